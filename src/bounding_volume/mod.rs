@@ -1,0 +1,41 @@
+//! Bounding volumes: one file per kind.
+//!
+//! A volume is fitted in its model's frame on principal axes chosen by the hierarchy builder, and
+//! tested against a volume of another model through the relative pose of the second model's frame in
+//! the first's. Distance volumes give a lower bound on the distance between anything they contain;
+//! overlap volumes answer whether they may intersect.
+
+mod obb;
+mod rss;
+
+pub use obb::Obb;
+pub use rss::Rss;
+
+use crate::math::{Mat3, RelPose, Vec3};
+
+/// What every bounding volume offers the hierarchy builder.
+pub trait BoundingVolume: Copy + Send + Sync + std::fmt::Debug + 'static {
+    /// The tightest volume of this kind on the given axes (orthonormal columns of `axes`, right-handed,
+    /// in decreasing order of spread) that contains every point of `points` (not empty).
+    fn fit(axes: &Mat3, points: &[Vec3]) -> Self;
+
+    /// Whether `p` lies in the volume, allowing `eps` of slack (for tests and debug checks).
+    fn contains(&self, p: &Vec3, eps: f64) -> bool;
+
+    /// A size used to decide which volume of a pair to descend (the larger one).
+    fn size(&self) -> f64;
+}
+
+/// Volumes that bound distance: the separation-distance and tolerance queries use these.
+pub trait DistanceVolume: BoundingVolume {
+    /// A lower bound (>= 0) on the distance between any point of `a` and any point of `b`, where `b`
+    /// is in a frame whose pose in `a`'s frame is `rel`. Returns 0 when they overlap.
+    fn distance(a: &Self, b: &Self, rel: &RelPose) -> f64;
+}
+
+/// Volumes that bound overlap: the collision query uses these.
+pub trait OverlapVolume: BoundingVolume {
+    /// Whether `a` and `b` (with `b` posed by `rel` in `a`'s frame) may share a point. Never false
+    /// when they do.
+    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool;
+}

@@ -1,0 +1,122 @@
+//! Vectors, matrices and poses.
+
+use crate::error::{Error, MAX_COORDINATE};
+use nalgebra::{Matrix3, Vector3};
+
+/// A 3-vector of `f64`.
+pub type Vec3 = Vector3<f64>;
+/// A 3x3 matrix of `f64`.
+pub type Mat3 = Matrix3<f64>;
+
+/// Where a model is in the world: `x_world = rotation * x_model + translation`.
+///
+/// As in PQP, the columns of `rotation` are the model's axes in world coordinates. The rotation is
+/// used as given (it is not re-orthonormalised); give a proper rotation for meaningful answers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Rotation matrix (model axes as columns).
+    pub rotation: Mat3,
+    /// Translation of the model's origin.
+    pub translation: Vec3,
+}
+
+impl Default for Pose {
+    fn default() -> Self {
+        Pose::identity()
+    }
+}
+
+impl Pose {
+    /// The identity pose.
+    pub fn identity() -> Pose {
+        Pose {
+            rotation: Mat3::identity(),
+            translation: Vec3::zeros(),
+        }
+    }
+
+    /// A pose from PQP's arrays: `r` row by row, and `t`.
+    ///
+    /// ```
+    /// let pose = pqp::Pose::new([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0, 0.0, 2.0]);
+    /// assert_eq!(pose.translation.z, 2.0);
+    /// ```
+    pub fn new(r: [[f64; 3]; 3], t: [f64; 3]) -> Pose {
+        Pose {
+            rotation: Mat3::new(
+                r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+            ),
+            translation: Vec3::new(t[0], t[1], t[2]),
+        }
+    }
+
+    /// A pure translation.
+    pub fn from_translation(t: [f64; 3]) -> Pose {
+        Pose {
+            rotation: Mat3::identity(),
+            translation: Vec3::new(t[0], t[1], t[2]),
+        }
+    }
+
+    /// Maps a point from model coordinates to world coordinates.
+    pub fn transform_point(&self, p: &Vec3) -> Vec3 {
+        self.rotation * p + self.translation
+    }
+
+    /// `Err(NonFinitePose)` unless every entry is finite and not above [`MAX_COORDINATE`].
+    pub fn validate(&self) -> Result<(), Error> {
+        let ok = self
+            .rotation
+            .iter()
+            .chain(self.translation.iter())
+            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE);
+        if ok {
+            Ok(())
+        } else {
+            Err(Error::NonFinitePose)
+        }
+    }
+}
+
+/// The pose of frame B in frame A: `x_A = rot * x_B + trans`.
+///
+/// Queries work in model 1's frame: model 2's volumes and triangles are brought there with the
+/// relative pose `R1^T R2, R1^T (T2 - T1)`, so the world frame never appears in the inner loops.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RelPose {
+    /// Rotation from B to A.
+    pub rot: Mat3,
+    /// Translation from B to A.
+    pub trans: Vec3,
+}
+
+impl RelPose {
+    /// The pose of model 2's frame in model 1's frame.
+    pub fn between(pose1: &Pose, pose2: &Pose) -> RelPose {
+        let r1t = pose1.rotation.transpose();
+        RelPose {
+            rot: r1t * pose2.rotation,
+            trans: r1t * (pose2.translation - pose1.translation),
+        }
+    }
+
+    /// The identity.
+    pub fn identity() -> RelPose {
+        RelPose {
+            rot: Mat3::identity(),
+            trans: Vec3::zeros(),
+        }
+    }
+
+    /// Maps a point of frame B into frame A.
+    #[inline]
+    pub fn apply(&self, p: &Vec3) -> Vec3 {
+        self.rot * p + self.trans
+    }
+
+    /// Maps a point of frame A back into frame B (the rotation is taken as orthonormal).
+    #[inline]
+    pub fn apply_inverse(&self, p: &Vec3) -> Vec3 {
+        self.rot.tr_mul(&(p - self.trans))
+    }
+}

@@ -1,0 +1,189 @@
+//! A triangle model and PQP's build protocol: begin, add triangles, end.
+
+use crate::bvh::Bvh;
+use crate::error::{Error, MAX_COORDINATE};
+use crate::geometry::Tri;
+use crate::math::Vec3;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum State {
+    /// Fresh or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
+    Empty,
+    /// Between `begin` and `end`.
+    Building,
+    /// `end` succeeded: the hierarchy is built and the model is immutable.
+    Built,
+}
+
+/// A triangle model, built by [`begin`](Model::begin), [`add_triangle`](Model::add_triangle) and
+/// [`end`](Model::end), exactly as PQP 1.3's `PQP_Model`.
+///
+/// A built model is immutable; it is `Send + Sync`, so any number of threads may query it at once.
+///
+/// ```
+/// use pqp::Model;
+/// let mut m = Model::new();
+/// m.begin(1).unwrap();
+/// m.add_triangle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 7).unwrap();
+/// m.end().unwrap();
+/// assert_eq!(m.num_triangles(), 1);
+/// assert!(m.is_built());
+/// ```
+#[derive(Debug)]
+pub struct Model {
+    state: State,
+    /// Triangles in the order added, until `end` hands them to the hierarchy.
+    pending: Vec<(Tri, i32)>,
+    bvh: Option<Bvh>,
+    /// Identifies this build of this model, for the triangle cache kept in distance results.
+    uid: u64,
+}
+
+impl Default for Model {
+    fn default() -> Self {
+        Model::new()
+    }
+}
+
+static NEXT_UID: AtomicU64 = AtomicU64::new(1);
+
+impl Model {
+    /// An empty model.
+    pub fn new() -> Model {
+        Model {
+            state: State::Empty,
+            pending: Vec::new(),
+            bvh: None,
+            uid: 0,
+        }
+    }
+
+    /// Starts a model, reserving room for `capacity_hint` triangles (a hint only).
+    ///
+    /// On a model that is not fresh (begun, or built) the model is cleared and
+    /// `Err(BuildOutOfSequence)` is returned, as PQP does; the model is then ready for `add_triangle`.
+    pub fn begin(&mut self, capacity_hint: usize) -> Result<(), Error> {
+        let was_empty = self.state == State::Empty;
+        self.pending = Vec::new();
+        self.bvh = None;
+        self.uid = 0;
+        // A hint is only a hint: a huge one must not abort the process.
+        let _ = self.pending.try_reserve(capacity_hint.min(1 << 24));
+        self.state = State::Building;
+        if was_empty {
+            Ok(())
+        } else {
+            Err(Error::BuildOutOfSequence)
+        }
+    }
+
+    /// Adds a triangle with the caller's `id` (returned in query answers).
+    ///
+    /// Before `begin` it begins implicitly (PQP's behaviour). After `end` it is ignored and returns
+    /// `Err(BuildOutOfSequence)`. A vertex with a NaN, infinite, or huge (> [`MAX_COORDINATE`])
+    /// coordinate is refused with `Err(NonFiniteCoordinate)`: the triangle is not stored and the model
+    /// stays usable. Degenerate triangles (segments, points) are accepted.
+    pub fn add_triangle(
+        &mut self,
+        p1: [f64; 3],
+        p2: [f64; 3],
+        p3: [f64; 3],
+        id: i32,
+    ) -> Result<(), Error> {
+        match self.state {
+            State::Built => return Err(Error::BuildOutOfSequence),
+            State::Empty => self.state = State::Building,
+            State::Building => {}
+        }
+        let ok = p1
+            .iter()
+            .chain(p2.iter())
+            .chain(p3.iter())
+            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE);
+        if !ok {
+            return Err(Error::NonFiniteCoordinate);
+        }
+        if self.pending.len() >= i32::MAX as usize {
+            return Err(Error::ModelOutOfMemory);
+        }
+        self.pending
+            .try_reserve(1)
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        self.pending
+            .push(([Vec3::from(p1), Vec3::from(p2), Vec3::from(p3)], id));
+        Ok(())
+    }
+
+    /// Builds the bounding-volume hierarchy. After it the model is immutable and can be queried.
+    ///
+    /// `Err(BuildOutOfSequence)` if already built or never begun; `Err(BuildEmptyModel)` if begun
+    /// but no triangle was added (the model stays unusable until triangles are added and `end`
+    /// succeeds); `Err(ModelOutOfMemory)` if the hierarchy could not
+    /// be allocated.
+    pub fn end(&mut self) -> Result<(), Error> {
+        match self.state {
+            State::Built | State::Empty => return Err(Error::BuildOutOfSequence),
+            State::Building if self.pending.is_empty() => return Err(Error::BuildEmptyModel),
+            State::Building => {}
+        }
+        let tris = std::mem::take(&mut self.pending);
+        let bvh = Bvh::build(tris)?;
+        self.bvh = Some(bvh);
+        self.state = State::Built;
+        self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);
+        Ok(())
+    }
+
+    /// Builds a model from `(p1, p2, p3, id)` triangles in one call.
+    ///
+    /// ```
+    /// let m = pqp::Model::from_triangles([([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0)]).unwrap();
+    /// assert_eq!(m.num_triangles(), 1);
+    /// ```
+    pub fn from_triangles<I>(tris: I) -> Result<Model, Error>
+    where
+        I: IntoIterator<Item = ([f64; 3], [f64; 3], [f64; 3], i32)>,
+    {
+        let mut m = Model::new();
+        m.begin(0)?;
+        for (a, b, c, id) in tris {
+            m.add_triangle(a, b, c, id)?;
+        }
+        m.end()?;
+        Ok(m)
+    }
+
+    /// Whether `end` has succeeded.
+    pub fn is_built(&self) -> bool {
+        self.state == State::Built
+    }
+
+    /// Number of triangles stored (added so far, or in the built model).
+    pub fn num_triangles(&self) -> usize {
+        match &self.bvh {
+            Some(b) => b.tris.len(),
+            None => self.pending.len(),
+        }
+    }
+
+    /// Bytes of memory the model holds (triangles, hierarchy and bookkeeping).
+    pub fn memory_usage(&self) -> u64 {
+        let pending = self.pending.capacity() * std::mem::size_of::<(Tri, i32)>();
+        let bvh = self.bvh.as_ref().map_or(0, |b| b.memory_usage());
+        (std::mem::size_of::<Model>() + pending + bvh) as u64
+    }
+
+    /// The hierarchy of a built model.
+    pub(crate) fn bvh(&self) -> Result<&Bvh, Error> {
+        match (&self.state, &self.bvh) {
+            (State::Built, Some(b)) => Ok(b),
+            _ => Err(Error::UnprocessedModel),
+        }
+    }
+
+    /// Identifies this build (distinct for every successful `end` in the process).
+    pub(crate) fn uid(&self) -> u64 {
+        self.uid
+    }
+}

@@ -1,0 +1,144 @@
+//! Collision: which triangle pairs of two posed models overlap.
+
+use super::traversal::{descend_first, NodePair, PairStack};
+use super::{prepare, Stats};
+use crate::bounding_volume::OverlapVolume;
+use crate::error::Error;
+use crate::geometry::{tri_overlap, Tri};
+use crate::math::Pose;
+use crate::model::Model;
+use std::time::Instant;
+
+/// Report every overlapping pair, or stop at the first (PQP's `PQP_ALL_CONTACTS` = 1 and
+/// `PQP_FIRST_CONTACT` = 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(i32)]
+pub enum ContactMode {
+    /// Find all overlapping triangle pairs.
+    All = 1,
+    /// Stop at the first overlapping pair found.
+    First = 2,
+}
+
+/// An overlapping triangle pair, by the ids the caller gave the triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[repr(C)]
+pub struct ContactPair {
+    /// Id of the triangle of model 1.
+    pub id1: i32,
+    /// Id of the triangle of model 2.
+    pub id2: i32,
+}
+
+/// The answer of a collision query.
+#[derive(Clone, Debug, Default)]
+pub struct CollideResult {
+    /// Work done.
+    pub stats: Stats,
+    pairs: Vec<ContactPair>,
+}
+
+impl CollideResult {
+    /// An empty result.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Whether any triangle pair overlaps.
+    pub fn colliding(&self) -> bool {
+        !self.pairs.is_empty()
+    }
+    /// The overlapping pairs found (one, at most, in `ContactMode::First`), each once.
+    pub fn pairs(&self) -> &[ContactPair] {
+        &self.pairs
+    }
+    /// Number of overlapping pairs found.
+    pub fn num_pairs(&self) -> usize {
+        self.pairs.len()
+    }
+    /// Releases the pair list's memory (PQP's `FreePairsList`).
+    pub fn free_pairs(&mut self) {
+        self.pairs = Vec::new();
+    }
+}
+
+/// Finds the overlapping triangle pairs of `m1` at `pose1` and `m2` at `pose2`.
+///
+/// Two triangles overlap when they share a point: crossing, touching at a vertex or edge, and
+/// coplanar overlap all count. The test is exact for triangles in general position.
+///
+/// ```
+/// use pqp::{collide, ContactMode, Model, Pose};
+/// let tri = |id| ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], id);
+/// let a = Model::from_triangles([tri(1)]).unwrap();
+/// let b = Model::from_triangles([tri(2)]).unwrap();
+/// let r = collide(&a, &Pose::identity(), &b, &Pose::from_translation([0.2, 0.2, 0.0]), ContactMode::All).unwrap();
+/// assert_eq!(r.num_pairs(), 1);
+/// assert_eq!((r.pairs()[0].id1, r.pairs()[0].id2), (1, 2));
+/// ```
+pub fn collide(
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    mode: ContactMode,
+) -> Result<CollideResult, Error> {
+    let mut r = CollideResult::new();
+    collide_into(&mut r, m1, pose1, m2, pose2, mode)?;
+    Ok(r)
+}
+
+/// As [`collide`], reusing `result`'s storage. On error `result` is left as it was.
+pub fn collide_into(
+    result: &mut CollideResult,
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    mode: ContactMode,
+) -> Result<(), Error> {
+    let start = Instant::now();
+    let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
+    result.pairs.clear();
+    let mut stats = Stats::default();
+    let mut stack = PairStack::new();
+    stack.push(NodePair {
+        a: 0,
+        b: 0,
+        bound: 0.0,
+    });
+    'search: while let Some(p) = stack.pop() {
+        let na = &b1.nodes[p.a as usize];
+        let nb = &b2.nodes[p.b as usize];
+        stats.bv_tests += 1;
+        if !OverlapVolume::overlap(&na.obb, &nb.obb, &rel) {
+            continue;
+        }
+        if let (Some(ta), Some(tb)) = (na.leaf_triangle(), nb.leaf_triangle()) {
+            stats.tri_tests += 1;
+            let t2 = &b2.tris[tb];
+            let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
+            if tri_overlap(&b1.tris[ta], &moved) {
+                result.pairs.push(ContactPair {
+                    id1: b1.ids[ta],
+                    id2: b2.ids[tb],
+                });
+                if mode == ContactMode::First {
+                    break 'search;
+                }
+            }
+            continue;
+        }
+        if descend_first(na, nb, &na.obb, &nb.obb) {
+            let c = na.first_child() as u32;
+            stack.push(NodePair { a: c + 1, ..p });
+            stack.push(NodePair { a: c, ..p });
+        } else {
+            let c = nb.first_child() as u32;
+            stack.push(NodePair { b: c + 1, ..p });
+            stack.push(NodePair { b: c, ..p });
+        }
+    }
+    stats.query_time_secs = start.elapsed().as_secs_f64();
+    result.stats = stats;
+    Ok(())
+}

@@ -1,0 +1,74 @@
+//! The three proximity queries, one file each, and what they share (`traversal.rs`).
+//!
+//! Every query takes two built models, each with its pose, and works in model 1's frame: model 2's
+//! volumes and triangles are brought there by the relative pose. Results are plain values that the
+//! caller may keep and pass again: a distance or tolerance result remembers the closest triangle
+//! pair it found (the *triangle cache*), and the next query on the same two models starts from it.
+//! The cache lives in the result, never in the models, so models stay immutable and shareable.
+
+mod collide;
+mod distance;
+mod tolerance;
+mod traversal;
+
+pub use collide::{collide, collide_into, CollideResult, ContactMode, ContactPair};
+pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
+pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
+
+use crate::error::Error;
+use crate::math::{Pose, RelPose};
+use crate::model::Model;
+use crate::bvh::Bvh;
+
+/// Work counters and time of one query.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Bounding-volume tests (overlap tests for collision, distance bounds otherwise).
+    pub bv_tests: u64,
+    /// Triangle-pair tests.
+    pub tri_tests: u64,
+    /// Wall-clock time of the query, in seconds.
+    pub query_time_secs: f64,
+}
+
+/// The closest triangle pair of a previous query, by slot in each model's leaf order, tagged with the
+/// models' build ids so that it is used only on the same two models.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct TriCache {
+    uid1: u64,
+    uid2: u64,
+    tri1: u32,
+    tri2: u32,
+}
+
+impl TriCache {
+    fn new(m1: &Model, m2: &Model, tri1: usize, tri2: usize) -> TriCache {
+        TriCache {
+            uid1: m1.uid(),
+            uid2: m2.uid(),
+            tri1: tri1 as u32,
+            tri2: tri2 as u32,
+        }
+    }
+
+    /// The cached pair, if it belongs to these two models.
+    fn pair_for(cache: &Option<TriCache>, m1: &Model, m2: &Model) -> Option<(usize, usize)> {
+        cache
+            .filter(|c| c.uid1 == m1.uid() && c.uid2 == m2.uid())
+            .map(|c| (c.tri1 as usize, c.tri2 as usize))
+    }
+}
+
+/// Checks what every query needs and returns the two hierarchies and the relative pose.
+fn prepare<'a>(
+    m1: &'a Model,
+    pose1: &Pose,
+    m2: &'a Model,
+    pose2: &Pose,
+) -> Result<(&'a Bvh, &'a Bvh, RelPose), Error> {
+    let b1 = m1.bvh()?;
+    let b2 = m2.bvh()?;
+    pose1.validate()?;
+    pose2.validate()?;
+    Ok((b1, b2, RelPose::between(pose1, pose2)))
+}

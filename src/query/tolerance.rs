@@ -1,0 +1,129 @@
+//! Tolerance: are two posed models within distance `t` of each other?
+
+use super::distance::ClosestSearch;
+use super::{prepare, Stats, TriCache};
+use crate::error::Error;
+use crate::math::{Pose, Vec3};
+use crate::model::Model;
+use std::time::Instant;
+
+/// The answer of a tolerance query.
+///
+/// Keep it and pass it to [`tolerance_into`] again for the next query on the same models: the
+/// triangle pair that decided the last answer is tried first.
+#[derive(Clone, Debug)]
+pub struct ToleranceResult {
+    /// Whether the models' distance is at most `tolerance`.
+    pub closer_than_tolerance: bool,
+    /// The tolerance asked for.
+    pub tolerance: f64,
+    /// When closer: the distance of a triangle pair within the tolerance (not necessarily the
+    /// closest pair). Otherwise: a lower bound on the distance, greater than `tolerance`.
+    pub distance: f64,
+    /// When closer: the point on model 1 of that pair, in model 1's frame.
+    pub p1: Vec3,
+    /// When closer: the point on model 2 of that pair, in model 2's frame.
+    pub p2: Vec3,
+    /// When closer: the ids of that triangle pair; otherwise -1.
+    pub id1: i32,
+    /// See `id1`.
+    pub id2: i32,
+    /// Work done.
+    pub stats: Stats,
+    pub(crate) cache: Option<TriCache>,
+}
+
+impl Default for ToleranceResult {
+    fn default() -> Self {
+        ToleranceResult {
+            closer_than_tolerance: false,
+            tolerance: 0.0,
+            distance: f64::INFINITY,
+            p1: Vec3::zeros(),
+            p2: Vec3::zeros(),
+            id1: -1,
+            id2: -1,
+            stats: Stats::default(),
+            cache: None,
+        }
+    }
+}
+
+impl ToleranceResult {
+    /// An empty result.
+    pub fn new() -> Self {
+        Self::default()
+    }
+}
+
+/// Whether `m1` at `pose1` and `m2` at `pose2` are within `tolerance` (>= 0) of each other.
+///
+/// It stops at the first triangle pair within the tolerance and prunes every pair of volumes farther
+/// apart than it, so it is cheaper than a distance query. `qsize` is as in [`DistanceOptions`].
+///
+/// [`DistanceOptions`]: crate::DistanceOptions
+///
+/// ```
+/// use pqp::{tolerance, Model, Pose};
+/// let tri = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0);
+/// let a = Model::from_triangles([tri]).unwrap();
+/// let b = Model::from_triangles([tri]).unwrap();
+/// let near = Pose::from_translation([0.0, 0.0, 0.5]);
+/// assert!(tolerance(&a, &Pose::identity(), &b, &near, 0.6, 2).unwrap().closer_than_tolerance);
+/// assert!(!tolerance(&a, &Pose::identity(), &b, &near, 0.4, 2).unwrap().closer_than_tolerance);
+/// ```
+pub fn tolerance(
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    tolerance: f64,
+    qsize: usize,
+) -> Result<ToleranceResult, Error> {
+    let mut r = ToleranceResult::new();
+    tolerance_into(&mut r, m1, pose1, m2, pose2, tolerance, qsize)?;
+    Ok(r)
+}
+
+/// As [`tolerance`], trying first the pair cached in `result` by a previous query on the same two
+/// models. On error `result` is left as it was.
+pub fn tolerance_into(
+    result: &mut ToleranceResult,
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    tolerance: f64,
+    qsize: usize,
+) -> Result<(), Error> {
+    let start = Instant::now();
+    if !(tolerance >= 0.0) || qsize < 1 {
+        return Err(Error::InvalidArgument);
+    }
+    let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
+    let mut search = ClosestSearch::new(b1, b2, rel, TriCache::pair_for(&result.cache, m1, m2));
+    // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair.
+    search.run(qsize, |bound, d| bound > tolerance || bound >= d, |d| d <= tolerance);
+    let best = search.best;
+    result.stats = search.stats;
+    result.tolerance = tolerance;
+    result.closer_than_tolerance = best.d <= tolerance;
+    if result.closer_than_tolerance {
+        result.distance = best.d;
+        result.p1 = best.p;
+        result.p2 = rel.apply_inverse(&best.q);
+        result.id1 = b1.ids[best.ta];
+        result.id2 = b2.ids[best.tb];
+        result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
+    } else {
+        result.distance = best.d.min(search.pruned_min);
+        result.p1 = Vec3::zeros();
+        result.p2 = Vec3::zeros();
+        result.id1 = -1;
+        result.id2 = -1;
+        // The nearest pair seen is the best start for the next query.
+        result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
+    }
+    result.stats.query_time_secs = start.elapsed().as_secs_f64();
+    Ok(())
+}

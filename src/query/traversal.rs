@@ -1,0 +1,63 @@
+//! What the queries share: the descent rule of the bounding volume traversal tree (BVTT) and a
+//! fixed-size stack, so that no query allocates.
+
+use crate::bounding_volume::BoundingVolume;
+use crate::bvh::{Node, MAX_DEPTH};
+
+/// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NodePair {
+    pub a: u32,
+    pub b: u32,
+    pub bound: f64,
+}
+
+/// Each step of a depth-first descent leaves at most one sibling pair behind, and the descent is at
+/// most as long as both trees are deep.
+const STACK_CAPACITY: usize = 2 * MAX_DEPTH + 4;
+
+/// A stack on the call stack (no heap allocation per query).
+pub(crate) struct PairStack {
+    items: [NodePair; STACK_CAPACITY],
+    len: usize,
+}
+
+impl PairStack {
+    pub fn new() -> Self {
+        PairStack {
+            items: [NodePair::default(); STACK_CAPACITY],
+            len: 0,
+        }
+    }
+
+    #[inline]
+    pub fn push(&mut self, p: NodePair) {
+        // The build bounds the depth, so this cannot overflow; checked indexing keeps it memory safe
+        // even if that reasoning were wrong (a panic, caught at the C boundary).
+        self.items[self.len] = p;
+        self.len += 1;
+    }
+
+    #[inline]
+    pub fn pop(&mut self) -> Option<NodePair> {
+        if self.len == 0 {
+            None
+        } else {
+            self.len -= 1;
+            Some(self.items[self.len])
+        }
+    }
+}
+
+/// Which side of a BVTT node to descend: `true` for model 1's node. Descend the larger volume, or
+/// whichever is not a leaf (both leaves is handled by the caller).
+#[inline]
+pub(crate) fn descend_first<B: BoundingVolume>(a: &Node, b: &Node, va: &B, vb: &B) -> bool {
+    if b.child < 0 {
+        return true;
+    }
+    if a.child < 0 {
+        return false;
+    }
+    va.size() >= vb.size()
+}
