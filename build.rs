@@ -41,6 +41,11 @@ fn main() {
     if env::var_os("PQP_UPDATE_HEADER").is_some_and(|v| v == "1") {
         write_if_changed(&crate_dir.join("include/pqp/pqp.h"), &text);
     }
+    // tests/c_api.rs and tests/header.rs ask the cc crate for the C compiler of this target.
+    println!(
+        "cargo:rustc-env=PQP_TEST_TARGET={}",
+        env::var("TARGET").expect("TARGET")
+    );
     // Crates depending on this one (`links = "pqp"`) find the headers in DEP_PQP_INCLUDE.
     println!("cargo:include={}", crate_dir.join("include").display());
 }

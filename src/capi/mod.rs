@@ -124,16 +124,23 @@ pub(crate) fn boundary<T>(fallback: T, recover: impl FnOnce(), body: impl FnOnce
     let answer = match panic::catch_unwind(AssertUnwindSafe(body)) {
         Ok(v) => v,
         Err(payload) => {
-            // Dropping a panic payload may itself panic; leaking it (only ever after a bug) is safer.
-            std::mem::forget(payload);
+            drop_payload(payload);
             if let Err(again) = panic::catch_unwind(AssertUnwindSafe(recover)) {
-                std::mem::forget(again);
+                drop_payload(again);
             }
             fallback
         }
     };
     IN_C_CALL.with(|f| f.set(outer));
     answer
+}
+
+/// Frees a caught panic's payload. Dropping it may itself panic (a payload with a panicking `Drop`);
+/// that second payload is leaked rather than risk unwinding into C.
+fn drop_payload(payload: Box<dyn std::any::Any + Send>) {
+    if let Err(again) = panic::catch_unwind(AssertUnwindSafe(move || drop(payload))) {
+        std::mem::forget(again);
+    }
 }
 
 /// [`boundary`] for functions returning a status code.
