@@ -79,24 +79,14 @@ fn declarations(header: &str) -> Vec<Declaration> {
             }
             let open = decl.find('(').unwrap();
             let head = &decl[..open];
-            let name = head
-                .rsplit(|c: char| c == ' ' || c == '*')
-                .next()
-                .unwrap()
-                .to_string();
+            let name = head.rsplit([' ', '*']).next().unwrap().to_string();
             let inner = &decl[open + 1..decl.rfind(')').unwrap()];
             let params = if inner.trim() == "void" {
                 Vec::new()
             } else {
                 inner
                     .split(',')
-                    .map(|p| {
-                        p.trim()
-                            .rsplit(|c: char| c == ' ' || c == '*')
-                            .next()
-                            .unwrap()
-                            .to_string()
-                    })
+                    .map(|p| p.trim().rsplit([' ', '*']).next().unwrap().to_string())
                     .collect()
             };
             out.push(Declaration {
@@ -200,4 +190,67 @@ fn headers_compile_alone_in_every_cxx_standard() {
             compile_header_alone(header, true, std);
         }
     }
+}
+
+/// Every exported function runs its body through the one boundary helper (`boundary`, or `status`
+/// which wraps it), so that no panic can unwind into C.
+#[test]
+fn every_exported_function_goes_through_the_boundary() {
+    let dir = root().join("src/capi");
+    let mut exported = 0;
+    for entry in std::fs::read_dir(&dir).expect("src/capi") {
+        let path = entry.expect("entry").path();
+        let src = std::fs::read_to_string(&path).expect("source");
+        let mut rest = src.as_str();
+        while let Some(at) = rest.find("extern \"C\" fn ") {
+            let item = &rest[at..];
+            let name: String = item["extern \"C\" fn ".len()..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            // The body: from the first '{' after the signature to its matching '}'.
+            let open = item.find('{').expect("body");
+            let mut depth = 0;
+            let mut end = open;
+            for (i, c) in item[open..].char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            end = open + i;
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            let body = &item[open + 1..end];
+            // The body's last top-level expression (after any `let` of a closure) is the call.
+            let last = last_expression(body);
+            assert!(
+                last.starts_with("boundary(") || last.starts_with("status("),
+                "{}: {name} does not run its body through the boundary",
+                path.display()
+            );
+            exported += 1;
+            rest = &item[end..];
+        }
+    }
+    assert_eq!(exported, 45);
+}
+
+/// The text after the last `;` that is outside every bracket of `body`.
+fn last_expression(body: &str) -> &str {
+    let mut depth = 0i32;
+    let mut start = 0;
+    for (i, c) in body.char_indices() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            ';' if depth == 0 => start = i + 1,
+            _ => {}
+        }
+    }
+    body[start..].trim()
 }

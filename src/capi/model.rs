@@ -11,6 +11,12 @@ pub struct pqp_model {
     pub(crate) model: Model,
 }
 
+// Queries take `const pqp_model *` from any number of threads at once: the model must be shareable.
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<pqp_model>();
+};
+
 /// Creates an empty model.
 ///
 /// @return a new model, to be freed with pqp_model_destroy; NULL only if memory could not be
