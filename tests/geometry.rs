@@ -166,7 +166,8 @@ fn ref_seg_seg(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3) -> f64 {
     };
     let at = |s: f64| point_seg(p0 + (p1 - p0) * s);
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    for _ in 0..200 {
+    // (2/3)^120 ~ 1e-21 of the interval.
+    for _ in 0..120 {
         let m1 = lo + (hi - lo) / 3.0;
         let m2 = hi - (hi - lo) / 3.0;
         if at(m1) <= at(m2) {
@@ -374,7 +375,7 @@ fn random_pairs_match_reference() {
 #[test]
 fn nearly_touching_pairs_at_known_gaps() {
     let mut rng = Rng(42);
-    for iter in 0..4000 {
+    for iter in 0..3000 {
         let kind = (iter % 4) as u32;
         let size = rng.log_uniform(-2.0, 3.0);
         let off = if iter % 3 == 0 {
@@ -544,7 +545,7 @@ fn lattice_contact_is_exact() {
         (2f64.powi(30), -2f64.powi(40)),
         (2f64.powi(-60), 2f64.powi(-50)),
     ];
-    for iter in 0..6000 {
+    for iter in 0..4000 {
         let n = if iter % 2 == 0 { 2 } else { 3 };
         let mut v = || {
             Vec3::new(
@@ -604,7 +605,7 @@ fn lattice_contact_is_exact() {
             );
         }
     }
-    assert!(counts[0] > 1000 && counts[1] > 1000, "{counts:?}");
+    assert!(counts[0] > 700 && counts[1] > 700, "{counts:?}");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -875,6 +876,44 @@ fn random_degenerate_and_sliver_triangles() {
     }
 }
 
+/// A vertex hovering over the interior of a sliver face (sine of its angle down to 1e-12) at a
+/// known height: the plain float normal of a sliver is tilted by rounding far more than the height.
+/// (The reference's normal equations are as ill-conditioned here, so the construction is the
+/// reference.)
+#[test]
+fn vertex_over_a_sliver_face() {
+    let mut rng = Rng(31);
+    for iter in 0..2000 {
+        let size = rng.log_uniform(-1.0, 2.0);
+        let p = rng.vec(size);
+        let q = p + rng.dir() * size;
+        let along = (q - p).normalize();
+        let m = along.cross(&rng.dir()).normalize();
+        let width = size * rng.log_uniform(-12.0, -4.0);
+        let a: Tri = [p, q, p + (q - p) * rng.range(0.2, 0.8) + m * width];
+        // The exact normal direction of this sliver: along x m, to the rounding of the inputs.
+        let n = along.cross(&m);
+        let x = (a[0] + a[1] + a[2]) / 3.0;
+        let h = size * rng.log_uniform(-9.0, -1.0);
+        let top = x + n * h;
+        let b = tri_beyond(&mut rng, top, &n, size);
+        let got = tri_distance(&a, &b).distance;
+        // The vertex is within the sliver's footprint by about width / 3; rounding of the
+        // construction moves things by ~1e-16 size.
+        let slack = 1e-9 * h + 1e-14 * size;
+        assert!(
+            (got - h).abs() <= slack,
+            "#{iter}: {got} vs {h} (width {width})"
+        );
+        let r = point_triangle(&top, &a);
+        assert!(
+            (r.distance - h).abs() <= slack,
+            "#{iter}: point {} vs {h}",
+            r.distance
+        );
+    }
+}
+
 #[test]
 fn shared_features_and_identity() {
     let mut rng = Rng(5);
@@ -959,7 +998,7 @@ fn check_segments(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3, what: &str) {
 #[test]
 fn segments_match_reference() {
     let mut rng = Rng(3);
-    for iter in 0..3000 {
+    for iter in 0..2000 {
         let size = rng.log_uniform(-3.0, 3.0);
         let off = random_offset(&mut rng);
         let p0 = off + rng.vec(size);
@@ -1109,5 +1148,30 @@ fn throughput() {
             dt * 1e9,
             dt2 * 1e9
         );
+    }
+}
+
+/// Non-finite coordinates are refused when models are built, but the kernels must still not
+/// panic on them (the library never panics across the C ABI).
+#[test]
+fn non_finite_input_does_not_panic() {
+    let a = unit_tri(0.0);
+    for bad in [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::MAX,
+        f64::MIN_POSITIVE / 3.0,
+    ] {
+        for k in 0..9 {
+            let mut b = unit_tri(0.5);
+            b[k / 3][k % 3] = bad;
+            let _ = tri_distance(&a, &b);
+            let _ = tri_distance(&b, &a);
+            let _ = tri_overlap(&a, &b);
+            let _ = tri_overlap(&b, &b);
+            let _ = segment_segment(&a[0], &a[1], &b[0], &b[1]);
+            let _ = point_triangle(&b[0], &b);
+        }
     }
 }

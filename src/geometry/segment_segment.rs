@@ -49,8 +49,8 @@ pub(crate) struct SegSeg {
     pub gap: Vec3,
 }
 
-/// Clamps to `[0, 1]` with plain comparisons, which compile to branch-free min/max (NaN cannot
-/// arise from the finite ratios used here).
+/// Clamps to `[0, 1]` with plain comparisons, which compile to branch-free min/max (a NaN, which
+/// only non-finite input could produce, maps to 0).
 #[inline]
 fn clamp01(x: f64) -> f64 {
     let x = if x > 0.0 { x } else { 0.0 };
