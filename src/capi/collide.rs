@@ -34,14 +34,6 @@ const _: () = {
     assert!(offset_of!(ContactPair, id2) == offset_of!(pqp_contact_pair, id2));
 };
 
-// `pqp_collide_result_pairs` hands out the core's pair array as `pqp_contact_pair`s.
-const _: () = {
-    assert!(size_of::<ContactPair>() == size_of::<pqp_contact_pair>());
-    assert!(align_of::<ContactPair>() == align_of::<pqp_contact_pair>());
-    assert!(offset_of!(ContactPair, id1) == offset_of!(pqp_contact_pair, id1));
-    assert!(offset_of!(ContactPair, id2) == offset_of!(pqp_contact_pair, id2));
-};
-
 /// The answer of pqp_collide (opaque). Reuse one for many queries to reuse its storage.
 #[allow(non_camel_case_types)]
 #[derive(Default)]
