@@ -72,7 +72,7 @@ pub unsafe extern "C" fn pqp_collide_result_destroy(r: *mut pqp_collide_result) 
 ///
 /// A model's pose maps its coordinates to the world: x_world = R * x_model + T, with R given as 9
 /// doubles row by row (R[3*i+j] is row i, column j; the columns are the model's axes in world
-/// coordinates, exactly PQP's R[3][3], so C code passes &R[0][0]) and T as 3 doubles. Two triangles
+/// coordinates, exactly PQP's `R[3][3]`, so C code passes `&R[0][0]`) and T as 3 doubles. Two triangles
 /// collide when they share a point: crossing, touching at a vertex or an edge, and overlapping
 /// coplanar all count. Each colliding pair is reported once.
 ///

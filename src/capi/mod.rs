@@ -6,14 +6,14 @@
 //! answers. Everything that decides an answer lives in the Rust core.
 //!
 //! Rules every exported function follows:
-//! - Its whole body runs inside [`boundary`], the one place where panics are caught: a panic becomes
+//! - Its whole body runs inside `boundary`, the one place where panics are caught: a panic becomes
 //!   `PQP_ERR_INTERNAL` (or a documented fallback value for getters) and never unwinds into C.
 //! - A NULL required pointer returns `PQP_ERR_NULL_POINTER` (getters return their fallback value).
-//! - Handles are `Box` pointers: [`into_handle`] makes one and [`free_handle`] ends one; nothing else
+//! - Handles are `Box` pointers: `into_handle` makes one and `free_handle` ends one; nothing else
 //!   creates or frees them. The C types are opaque (cbindgen declares a Rust struct without
 //!   `#[repr(C)]` as an incomplete struct).
 //! - Nothing prints: a panic's message is swallowed by a panic hook that stays silent while a C ABI
-//!   call is running on the thread (see [`install_quiet_panic_hook`]).
+//!   call is running on the thread (see `install_quiet_panic_hook`).
 //!
 //! Pointer requirements are the C convention and are stated once in the header's preamble: a
 //! non-NULL pointer must point to what the documentation says (a live handle from the matching
