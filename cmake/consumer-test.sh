@@ -8,7 +8,9 @@
 #     libpqp.a, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
 #     -I<prefix>/include -L<prefix>/lib -lPQP, all of which must run and answer correctly.
 #
-# Usage: consumer-test.sh BUILD_DIR CONSUMER_SOURCE_DIR CC CXX CMAKE
+# Usage: consumer-test.sh BUILD_DIR CONSUMER_SOURCE_DIR CC CXX CMAKE [LIBDIR [INCLUDEDIR]]
+# (LIBDIR and INCLUDEDIR relative to the prefix, as CMAKE_INSTALL_LIBDIR/INCLUDEDIR; default
+# lib and include).
 set -euo pipefail
 
 build_dir=$1
@@ -16,6 +18,8 @@ consumer_src=$2
 cc=$3
 cxx=$4
 cmake=$5
+libdir=${6:-lib}
+includedir=${7:-include}
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/pqp-consumer.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -33,14 +37,14 @@ step "install into $prefix"
 
 cp -r "$consumer_src" "$work/src"
 cd "$work"
-lib=$prefix/lib
-inc=$prefix/include
+lib=$prefix/$libdir
+inc=$prefix/$includedir
 
 step "installed files"
-for f in lib/libpqp.so.1.0.0 lib/libpqp.so.1 lib/libpqp.so lib/libpqp.a lib/libPQP.so lib/libPQP.a \
-    include/pqp/pqp.h include/PQP.h include/PQP_Compile.h lib/pkgconfig/pqp.pc \
-    lib/cmake/pqp/pqpConfig.cmake lib/cmake/pqp/pqpConfigVersion.cmake; do
-    [[ -e $prefix/$f ]] || fail "missing $f"
+for f in "$lib"/{libpqp.so.1.0.0,libpqp.so.1,libpqp.so,libpqp.a,libPQP.so,libPQP.a} \
+    "$inc"/{pqp/pqp.h,PQP.h,PQP_Compile.h} "$lib"/pkgconfig/pqp.pc \
+    "$lib"/cmake/pqp/{pqpConfig.cmake,pqpConfigVersion.cmake}; do
+    [[ -e $f ]] || fail "missing $f"
 done
 for l in libpqp.so.1 libpqp.so libPQP.so libPQP.a; do
     [[ -L $lib/$l ]] || fail "$l is not a symbolic link"
