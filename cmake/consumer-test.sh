@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install/consumer test (run by ctest as install_consumer): installs a build into a temporary
 # prefix, then, in a temporary directory outside the source tree, checks what a user gets:
-#   - the installed files and links, and the shared library's soname (readelf -d);
+#   - the installed files and links, the shared library's soname (readelf -d), and that it
+#     exports exactly the functions pqp/pqp.h declares;
 #   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all three),
 #     with -Wall -Wextra -pedantic -Werror;
 #   - programs built with `pkg-config --cflags --libs pqp`, with pkg-config --static against
@@ -57,6 +58,15 @@ ls -l "$lib"
 step "soname"
 readelf -d "$lib/libpqp.so.1.0.0" | grep SONAME
 readelf -d "$lib/libpqp.so.1.0.0" | grep -q 'Library soname: \[libpqp\.so\.1\]' || fail "soname is not libpqp.so.1"
+
+step "exported symbols are exactly the functions pqp.h declares"
+exported=$(nm -D --defined-only "$lib/libpqp.so.1.0.0" | awk '{print $3}' | sort)
+declared=$(grep -oE '\bpqp_[a-z0-9_]+\(' "$inc/pqp/pqp.h" | tr -d '(' | sort -u)
+if [[ $exported != "$declared" ]]; then
+    diff <(echo "$declared") <(echo "$exported") || true
+    fail "exported symbols differ from the header's functions"
+fi
+echo "$(echo "$exported" | wc -l) functions"
 
 step "every header compiles alone"
 printf '#include <pqp/pqp.h>\n' >h_c.c
