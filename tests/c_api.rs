@@ -44,6 +44,18 @@ fn legacy_cxx_program_in_every_standard() {
     }
 }
 
+/// PQP.h beyond PQP 1.3: codes for bad arguments, moves, containers, the C handles.
+#[test]
+fn pqp_h_extensions() {
+    let exe = build_program(
+        &root().join("c_api_tests/pqp_h_extras.cpp"),
+        "c++11",
+        "pqp_h_extras",
+    );
+    let out = run_program(&exe);
+    assert!(out.contains("all checks passed"), "{out}");
+}
+
 /// The static library links with exactly the system libraries pqp.pc lists as private.
 #[test]
 fn static_library_links_with_the_documented_libraries() {
