@@ -46,7 +46,11 @@ fn cross(a: &P3, b: &P3) -> P3 {
 
 impl HullTri {
     fn new(v: [u32; 3], pts: &[P3]) -> HullTri {
-        let (a, b, c) = (&pts[v[0] as usize], &pts[v[1] as usize], &pts[v[2] as usize]);
+        let (a, b, c) = (
+            &pts[v[0] as usize],
+            &pts[v[1] as usize],
+            &pts[v[2] as usize],
+        );
         HullTri {
             v,
             n: [u32::MAX; 3],
@@ -261,7 +265,8 @@ pub(crate) fn hull(pts: &[P3]) -> Result<TriSurface, Error> {
         }
         for &q in &orphans {
             let pq = &pts[q as usize];
-            if let Some(t) = (first_new..tris.len() as u32).find(|&t| tris[t as usize].sees(pts, pq))
+            if let Some(t) =
+                (first_new..tris.len() as u32).find(|&t| tris[t as usize].sees(pts, pq))
             {
                 tris[t as usize].outside.push(q);
             }

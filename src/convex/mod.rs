@@ -125,7 +125,10 @@ impl ConvexPairCache {
     fn start_for(&self, m1: &ConvexModel, m2: &ConvexModel) -> Option<[Feature; 2]> {
         self.entry
             .filter(|e| {
-                e.uid1 == m1.uid() && e.uid2 == m2.uid() && m1.has_feature(e.f1) && m2.has_feature(e.f2)
+                e.uid1 == m1.uid()
+                    && e.uid2 == m2.uid()
+                    && m1.has_feature(e.f1)
+                    && m2.has_feature(e.f2)
             })
             .map(|e| [e.f1, e.f2])
     }
@@ -193,9 +196,8 @@ fn start_pair(
         return s;
     }
     let toward = |m: &ConvexModel, dir: Vec3| {
-        let best = (0..m.num_vertices()).max_by(|&i, &j| {
-            dir.dot(&m.vertex(i)).total_cmp(&dir.dot(&m.vertex(j)))
-        });
+        let best = (0..m.num_vertices())
+            .max_by(|&i, &j| dir.dot(&m.vertex(i)).total_cmp(&dir.dot(&m.vertex(j))));
         Feature::vertex(best.unwrap_or(0) as u32)
     };
     let c2_in_1 = rel.apply(&m2.centroid());

@@ -2,7 +2,7 @@
 //! and their Voronoi planes, built from a point set (through our hull) or from a closed convex mesh.
 
 use super::hull::{hull, TriSurface};
-use super::predicates::{orient2d, orient3d, P3};
+use super::predicates::{area_vector, orient2d, orient3d, P3};
 use super::{Feature, FeatureKind};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::math::Vec3;
@@ -81,6 +81,8 @@ pub struct ConvexModel {
     face_edges: Vec<u32>,
     face_sides: Vec<Plane>,
     centroid: Vec3,
+    /// Largest distance of a vertex from the model's origin.
+    radius: f64,
 }
 
 /// Checks coordinates and converts them.
@@ -114,17 +116,10 @@ fn scaled(points: &[Vec3]) -> Vec<P3> {
         .collect()
 }
 
-/// Newell's normal of a polygon (not normalised): robust for any planar polygon.
+/// A polygon's normal direction (not normalised), accurate even for slivers.
 fn newell(pts: &[P3], cycle: &[u32]) -> Vec3 {
-    let mut n = Vec3::zeros();
-    for k in 0..cycle.len() {
-        let a = &pts[cycle[k] as usize];
-        let b = &pts[cycle[(k + 1) % cycle.len()] as usize];
-        n.x += (a[1] - b[1]) * (a[2] + b[2]);
-        n.y += (a[2] - b[2]) * (a[0] + b[0]);
-        n.z += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    n
+    let a = area_vector(pts, cycle);
+    Vec3::new(a[0], a[1], a[2])
 }
 
 /// The coordinate plane a planar polygon with normal `n` projects onto one-to-one, as two axes in
@@ -225,7 +220,10 @@ fn facets(pts: &[P3], surf: &TriSurface) -> Result<Vec<Vec<u32>>, Error> {
             orient2d(p(a), p(b), p(c), i, j)
         };
         let turns: Vec<i32> = (0..n).map(turn).collect();
-        let corners: Vec<u32> = (0..n).filter(|&k| turns[k] != 0).map(|k| cycle[k]).collect();
+        let corners: Vec<u32> = (0..n)
+            .filter(|&k| turns[k] != 0)
+            .map(|k| cycle[k])
+            .collect();
         let sign = turns.iter().copied().find(|&s| s != 0).unwrap_or(0);
         if corners.len() < 3 || turns.iter().any(|&s| s == -sign) {
             return Err(Error::Internal);
@@ -349,7 +347,10 @@ impl ConvexModel {
                 }
             }
         }
-        if directed.keys().any(|&(a, b)| !directed.contains_key(&(b, a))) {
+        if directed
+            .keys()
+            .any(|&(a, b)| !directed.contains_key(&(b, a)))
+        {
             return Err(Error::InvalidArgument);
         }
         let mut used = vec![false; nv];
@@ -418,7 +419,10 @@ impl ConvexModel {
     }
 
     /// A closed convex triangle mesh; see [`from_polygons`](ConvexModel::from_polygons).
-    pub fn from_triangles(vertices: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<ConvexModel, Error> {
+    pub fn from_triangles(
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+    ) -> Result<ConvexModel, Error> {
         let counts = vec![3u32; triangles.len()];
         let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
         ConvexModel::from_polygons(vertices, &counts, &indices)
@@ -441,20 +445,17 @@ impl ConvexModel {
         }
         let mut verts = Vec::new();
         let mut source = Vec::new();
-        let mut old_of = Vec::new();
         for (i, id) in new_id.iter_mut().enumerate() {
             if *id == 0 {
                 *id = verts.len() as u32;
                 verts.push(pts[i]);
                 source.push(src[i]);
-                old_of.push(i);
             }
         }
         let nv = verts.len();
         let mut face_data = Vec::with_capacity(faces.len());
         let mut face_verts = Vec::new();
         let mut face_edges = Vec::new();
-        let mut face_sides = Vec::new();
         let mut edges: Vec<EdgeData> = Vec::new();
         let mut edge_of: HashMap<(u32, u32), u32> = HashMap::new();
         let dummy = Plane {
@@ -476,10 +477,7 @@ impl ConvexModel {
             });
             for k in 0..f.len() {
                 let (a, b) = (new_id[f[k] as usize], new_id[f[(k + 1) % f.len()] as usize]);
-                let (pa, pb) = (verts[a as usize], verts[b as usize]);
-                let u = (pb - pa).normalize();
                 face_verts.push(a);
-                face_sides.push(Plane::through(n.cross(&u).normalize(), &pa));
                 let e = match edge_of.get(&(a.min(b), a.max(b))) {
                     None => {
                         let e = edges.len() as u32;
@@ -520,6 +518,21 @@ impl ConvexModel {
                 Plane::through(nr.cross(&u).normalize(), &t),
             ];
         }
+        // A face's side plane along an edge is the edge's plane along that face, reversed, bit for
+        // bit: a point is then never both over the face (for the edge) and outside the face's prism
+        // through that edge (for the face), whatever the rounding.
+        let mut face_sides = Vec::with_capacity(face_edges.len());
+        for (fi, f) in face_data.iter().enumerate() {
+            for k in f.start..f.start + f.len {
+                let e = &edges[face_edges[k as usize] as usize];
+                let p = if e.left == fi as u32 {
+                    e.planes[2]
+                } else {
+                    e.planes[3]
+                };
+                face_sides.push(Plane { n: -p.n, d: -p.d });
+            }
+        }
         let mut deg = vec![0u32; nv + 1];
         for e in &edges {
             deg[e.tail as usize + 1] += 1;
@@ -547,7 +560,7 @@ impl ConvexModel {
             return Err(Error::Internal);
         }
         let centroid = verts.iter().fold(Vec3::zeros(), |s, v| s + v) / nv as f64;
-        let _ = old_of;
+        let radius = verts.iter().fold(0.0f64, |r, v| r.max(v.norm()));
         Ok(ConvexModel {
             uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
             verts,
@@ -562,6 +575,7 @@ impl ConvexModel {
             face_edges,
             face_sides,
             centroid,
+            radius,
         })
     }
 
@@ -697,6 +711,11 @@ impl ConvexModel {
         let d = &self.faces[f as usize];
         let (a, b) = (d.start as usize, (d.start + d.len) as usize);
         (a..b).map(move |k| (self.face_sides[k], Feature::edge(self.face_edges[k])))
+    }
+
+    /// Largest distance of a vertex from the model's origin.
+    pub(crate) fn radius(&self) -> f64 {
+        self.radius
     }
 
     #[inline]

@@ -83,6 +83,11 @@ impl Expansion {
         self.add(sign * p);
     }
 
+    /// The sum rounded (to within a couple of ulps): the components added from the smallest.
+    fn estimate(&self) -> f64 {
+        self.c[..self.len].iter().sum()
+    }
+
     /// The sign of the exact sum: that of its largest (last non-zero) component.
     fn sign(&self) -> i32 {
         for i in (0..self.len).rev() {
@@ -172,6 +177,25 @@ pub(crate) fn orient2d(a: &P3, b: &P3, c: &P3, i: usize, j: usize) -> i32 {
     x.sign()
 }
 
+/// Twice the vector area of a polygon, `sum_k p_k x p_(k+1)` (its direction is the normal of a
+/// planar polygon, counter-clockwise seen from its tip), computed exactly and rounded at the end,
+/// so that it is accurate to a few ulps even for slivers whose float cross products cancel.
+pub(crate) fn area_vector(pts: &[P3], cycle: &[u32]) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for (c, o) in out.iter_mut().enumerate() {
+        let (i, j) = ((c + 1) % 3, (c + 2) % 3);
+        let mut x = Expansion::new();
+        for k in 0..cycle.len() {
+            let a = &pts[cycle[k] as usize];
+            let b = &pts[cycle[(k + 1) % cycle.len()] as usize];
+            x.add_pair(1.0, a[i], b[j]);
+            x.add_pair(-1.0, a[j], b[i]);
+        }
+        *o = x.estimate();
+    }
+    out
+}
+
 /// Whether three points lie on one line (exactly): all three coordinate projections are degenerate.
 pub(crate) fn collinear(a: &P3, b: &P3, c: &P3) -> bool {
     orient2d(a, b, c, 0, 1) == 0 && orient2d(a, b, c, 1, 2) == 0 && orient2d(a, b, c, 0, 2) == 0
@@ -211,7 +235,11 @@ mod tests {
             orient3d(&p(1.0, 2.0), &p(3.0, 7.0), &p(-5.0, 11.0), &p(1e6, -3.0)),
             0
         );
-        assert!(collinear(&[0.0, 0.0, 0.0], &[1.0, 1.0, 1.0], &[3.0, 3.0, 3.0]));
+        assert!(collinear(
+            &[0.0, 0.0, 0.0],
+            &[1.0, 1.0, 1.0],
+            &[3.0, 3.0, 3.0]
+        ));
         assert!(!collinear(
             &[0.0, 0.0, 0.0],
             &[1.0, 1.0, 1.0],

@@ -49,6 +49,9 @@ struct Side<'a> {
     m: &'a ConvexModel,
     rot: Mat3,
     trans: Vec3,
+    /// Contact distance: features nearer than this (a few ulps of the scene's size, the rounding
+    /// of the pose alone) touch.
+    touch: f64,
 }
 
 impl Side<'_> {
@@ -161,6 +164,12 @@ fn vertex_planes(m: &ConvexModel, v: u32) -> impl Iterator<Item = (Plane, Featur
 fn vv(x: &Side, vx: u32, y: &Side, vy: u32) -> Step {
     let px = *x.m.vert(vx);
     let py_x = x.import(y.m.vert(vy));
+    if (py_x - px).norm() <= x.touch {
+        return Step::Contact {
+            px,
+            py: *y.m.vert(vy),
+        };
+    }
     if let Some(f) = most_violated(vertex_planes(x.m, vx), &py_x) {
         return Step::X(f);
     }
@@ -180,6 +189,14 @@ fn ve(x: &Side, vx: u32, y: &Side, ey: u32) -> Step {
     let ed = &y.m.edges[ey as usize];
     let nb = y.m.edge_neighbours(ey);
     let v_y = y.import(x.m.vert(vx));
+    let (ty, hy) = (y.m.vert(ed.tail), y.m.vert(ed.head));
+    let py = point_at(ty, hy, point_segment_param(&v_y, ty, hy));
+    if (v_y - py).norm() <= y.touch {
+        return Step::Contact {
+            px: *x.m.vert(vx),
+            py,
+        };
+    }
     // Beyond a vertex plane the edge's closest point is that vertex: same distance, lower dim.
     if ed.planes[0].eval(&v_y) < 0.0 {
         return Step::Y(nb[0]);
@@ -193,7 +210,6 @@ fn ve(x: &Side, vx: u32, y: &Side, ey: u32) -> Step {
     }
     // The edge against the vertex's region.
     let v = *x.m.vert(vx);
-    let (ty, hy) = (y.m.vert(ed.tail), y.m.vert(ed.head));
     let (a, b) = (x.import(ty), x.import(hy));
     let d = b - a;
     if let Some(f) = locate(&a, &b, 0.0, 1.0, vertex_planes(x.m, vx), |l| {
@@ -201,7 +217,6 @@ fn ve(x: &Side, vx: u32, y: &Side, ey: u32) -> Step {
     }) {
         return Step::X(f);
     }
-    let py = point_at(ty, hy, point_segment_param(&v_y, ty, hy));
     Step::Apart {
         px: v,
         py,
@@ -262,43 +277,64 @@ fn edge_edge_points(x: &Side, ex: u32, y: &Side, ey: u32) -> (Vec3, Vec3, f64) {
 
 /// Edge (X) - edge (Y).
 fn ee(x: &Side, ex: u32, y: &Side, ey: u32) -> Step {
+    let (px, py, dist) = edge_edge_points(x, ex, y, ey);
+    if dist <= x.touch {
+        return Step::Contact { px, py };
+    }
     if let Some(f) = edge_against_edge_region(x, ex, y, ey) {
         return Step::X(f);
     }
     if let Some(f) = edge_against_edge_region(y, ey, x, ex) {
         return Step::Y(f);
     }
-    let (px, py, dist) = edge_edge_points(x, ex, y, ey);
     Step::Apart { px, py, dist }
 }
 
-/// The edge of face `f` nearest point `p` (all in the face's frame).
-fn face_edge_nearest_point(m: &ConvexModel, f: u32, p: &Vec3) -> Feature {
-    let mut best = (f64::INFINITY, m.face_edges(f as usize)[0]);
-    for &e in m.face_edges(f as usize) {
-        let ed = &m.edges[e as usize];
-        let (t, h) = (m.vert(ed.tail), m.vert(ed.head));
-        let d = (p - point_at(t, h, point_segment_param(p, t, h))).norm_squared();
-        if d < best.0 {
-            best = (d, e);
+/// The edge of face `f` nearest a point or segment outside the face's prism. `near(t, h)` gives,
+/// for an edge `[t, h]`, the squared distance to it and the point of the query nearest it.
+///
+/// The face's closest point lies on an edge whose side plane is violated by the query's point
+/// nearest that edge (the offset between the two closest points is in the face's normal cone
+/// there, and not along the face's normal since the query is outside the prism). Only such edges
+/// compete: comparing distances alone would let rounding ties between the nearly coincident edges
+/// of a sliver face undo the move that led to the face. All edges compete if none qualifies (by
+/// rounding).
+fn face_edge_nearest(
+    m: &ConvexModel,
+    f: u32,
+    near: impl Fn(&Vec3, &Vec3) -> (f64, Vec3),
+) -> Feature {
+    let mut best: Option<(f64, Feature)> = None;
+    let mut any: Option<(f64, Feature)> = None;
+    for (pl, e) in m.face_side_planes(f) {
+        let ed = &m.edges[e.index as usize];
+        let (d, q) = near(m.vert(ed.tail), m.vert(ed.head));
+        if any.map_or(true, |(bd, _)| d < bd) {
+            any = Some((d, e));
+        }
+        if pl.eval(&q) < 0.0 && best.map_or(true, |(bd, _)| d < bd) {
+            best = Some((d, e));
         }
     }
-    Feature::edge(best.1)
+    best.or(any)
+        .map_or(Feature::edge(m.face_edges(f as usize)[0]), |b| b.1)
 }
 
-/// The edge of face `f` nearest segment `[a, b]` (all in the face's frame).
+/// The edge of face `f` nearest point `p` (in the face's frame); see `face_edge_nearest`.
+fn face_edge_nearest_point(m: &ConvexModel, f: u32, p: &Vec3) -> Feature {
+    face_edge_nearest(m, f, |t, h| {
+        let d = (p - point_at(t, h, point_segment_param(p, t, h))).norm_squared();
+        (d, *p)
+    })
+}
+
+/// The edge of face `f` nearest segment `[a, b]` (in the face's frame); see `face_edge_nearest`.
 fn face_edge_nearest_segment(m: &ConvexModel, f: u32, a: &Vec3, b: &Vec3) -> Feature {
-    let mut best = (f64::INFINITY, m.face_edges(f as usize)[0]);
-    for &e in m.face_edges(f as usize) {
-        let ed = &m.edges[e as usize];
-        let (t, h) = (m.vert(ed.tail), m.vert(ed.head));
+    face_edge_nearest(m, f, |t, h| {
         let (s, u) = segment_segment_params(a, b, t, h);
-        let d = (point_at(a, b, s) - point_at(t, h, u)).norm_squared();
-        if d < best.0 {
-            best = (d, e);
-        }
-    }
-    Feature::edge(best.1)
+        let q = point_at(a, b, s);
+        ((q - point_at(t, h, u)).norm_squared(), q)
+    })
 }
 
 /// The feature of `m` nearest an outside point `p` (brute force: the local-minimum escape).
@@ -351,6 +387,12 @@ fn vf(x: &Side, vx: u32, y: &Side, fy: u32, ctr: &mut Counters) -> Step {
     }
     let d = plane.eval(&v);
     let px = *x.m.vert(vx);
+    if d.abs() <= y.touch {
+        return Step::Contact {
+            px,
+            py: v - plane.n * d,
+        };
+    }
     if d > 0.0 {
         // An edge of the vertex that descends towards the plane is strictly nearer the face.
         let mut best: Option<(f64, Feature)> = None;
@@ -372,9 +414,6 @@ fn vf(x: &Side, vx: u32, y: &Side, fy: u32, ctr: &mut Counters) -> Step {
             py: v - plane.n * d,
             dist: d,
         };
-    }
-    if d == 0.0 {
-        return Step::Contact { px, py: v };
     }
     // Under the plane, inside the prism: inside the polyhedron, or a local minimum of the search.
     ctr.local_minima += 1;
@@ -416,9 +455,12 @@ fn ef(x: &Side, ex: u32, y: &Side, fy: u32) -> Step {
         plane.eval(&point_at(&a, &b, lo)),
         plane.eval(&point_at(&a, &b, hi)),
     );
-    if dl == 0.0 || dh == 0.0 || (dl < 0.0) != (dh < 0.0) {
-        let l = if dl == dh {
+    let touch = y.touch;
+    if dl.abs() <= touch || dh.abs() <= touch || (dl < 0.0) != (dh < 0.0) {
+        let l = if dl.abs() <= touch {
             lo
+        } else if dh.abs() <= touch {
+            hi
         } else {
             lo + (hi - lo) * (dl / (dl - dh))
         };
@@ -484,44 +526,9 @@ fn step(s: &[Side; 2], st: [Feature; 2], ctr: &mut Counters) -> Outcome {
     }
 }
 
-/// Closest points (each in its own frame) and distance of a pair that can be final.
-fn pair_points(s: &[Side; 2], st: [Feature; 2]) -> Option<([Vec3; 2], f64)> {
-    use FeatureKind::{Edge as E, Face as F, Vertex as V};
-    let (i0, i1) = (st[0].index, st[1].index);
-    let swap = |(a, b, d): (Vec3, Vec3, f64)| ([b, a], d);
-    let keep = |(a, b, d): (Vec3, Vec3, f64)| ([a, b], d);
-    let vertex_feature = |x: &Side, vx: u32, y: &Side, fy: Feature| -> (Vec3, Vec3, f64) {
-        let px = *x.m.vert(vx);
-        let p = y.import(&px);
-        let q = match fy.kind {
-            V => *y.m.vert(fy.index),
-            E => {
-                let ed = &y.m.edges[fy.index as usize];
-                let (t, h) = (y.m.vert(ed.tail), y.m.vert(ed.head));
-                point_at(t, h, point_segment_param(&p, t, h))
-            }
-            F => {
-                let inside = y.m.face_side_planes(fy.index).all(|(pl, _)| pl.eval(&p) >= 0.0);
-                if inside {
-                    let pl = y.m.faces[fy.index as usize].plane;
-                    p - pl.n * pl.eval(&p)
-                } else {
-                    let e = face_edge_nearest_point(y.m, fy.index, &p).index;
-                    let ed = &y.m.edges[e as usize];
-                    let (t, h) = (y.m.vert(ed.tail), y.m.vert(ed.head));
-                    point_at(t, h, point_segment_param(&p, t, h))
-                }
-            }
-        };
-        (px, q, (p - q).norm())
-    };
-    match (st[0].kind, st[1].kind) {
-        (V, _) => Some(keep(vertex_feature(&s[0], i0, &s[1], st[1]))),
-        (_, V) => Some(swap(vertex_feature(&s[1], i1, &s[0], st[0]))),
-        (E, E) => Some(keep(edge_edge_points(&s[0], i0, &s[1], i1))),
-        _ => None,
-    }
-}
+/// Contact distance in units of `f64::EPSILON` times the scene's size (the models' radii about
+/// their origins plus the distance between the origins): about the rounding of posing a vertex.
+const TOUCH_ULPS: f64 = 64.0;
 
 /// Number of features of a model.
 fn feature_count(m: &ConvexModel) -> u64 {
@@ -536,16 +543,19 @@ pub(crate) fn vclip(
     start: [Feature; 2],
 ) -> Result<VClipAnswer, Error> {
     let rt = rel.rot.transpose();
+    let touch = TOUCH_ULPS * f64::EPSILON * (m1.radius() + m2.radius() + rel.trans.norm());
     let sides = [
         Side {
             m: m1,
             rot: rel.rot,
             trans: rel.trans,
+            touch,
         },
         Side {
             m: m2,
             rot: rt,
             trans: -(rt * rel.trans),
+            touch,
         },
     ];
     let bound = feature_count(m1)
@@ -585,8 +595,7 @@ pub(crate) fn vclip(
             }
         }
         if state == checkpoint {
-            ctr.cycles += 1;
-            return break_cycle(&sides, state, ctr);
+            return Ok(break_cycle(&sides, ctr));
         }
         lam += 1;
         if lam == power {
@@ -597,30 +606,186 @@ pub(crate) fn vclip(
     }
 }
 
-/// A cycle (only possible through rounding at a near-tie): report its pair of least distance.
-fn break_cycle(s: &[Side; 2], start: [Feature; 2], mut ctr: Counters) -> Result<VClipAnswer, Error> {
-    let mut best: Option<([Feature; 2], [Vec3; 2], f64)> = None;
-    let mut state = start;
-    loop {
-        if let Some((points, d)) = pair_points(s, state) {
-            if best.as_ref().map_or(true, |b| d < b.2) {
-                best = Some((state, points, d));
-            }
-        }
-        match step(s, state, &mut ctr) {
-            Outcome::Update(i, f) => state[i] = f,
-            _ => return Err(Error::Internal),
-        }
-        if state == start {
-            break;
-        }
-    }
-    let (state, points, distance) = best.ok_or(Error::Internal)?;
-    Ok(VClipAnswer {
+/// A cycle (only possible through rounding at a near-tie, in practice around sliver faces): the
+/// search cannot be trusted to continue, so the answer comes from a scan of all feature pairs,
+/// `O(V1 F2 + V2 F1 + E1 E2)`, which needs no Voronoi decision.
+fn break_cycle(s: &[Side; 2], mut ctr: Counters) -> VClipAnswer {
+    ctr.cycles += 1;
+    let (state, contact, points, distance) = exhaustive(s);
+    VClipAnswer {
         state,
-        intersecting: distance == 0.0,
+        intersecting: contact,
         distance,
         points,
         counters: ctr,
-    })
+    }
+}
+
+/// Orders a pair found with model `x` first back into (model 1, model 2).
+fn ordered<T>(x: usize, a: T, b: T) -> [T; 2] {
+    if x == 0 {
+        [a, b]
+    } else {
+        [b, a]
+    }
+}
+
+/// Exhaustive closest pair: contact if a vertex of one model is inside the other or an edge of
+/// one crosses a face of the other; otherwise the least distance over vertex-face pairs (vertex in
+/// the face's prism) and edge-edge pairs (whose endpoints cover the vertex-edge and vertex-vertex
+/// pairs). Returns the feature pair, the contact verdict, the points, and the distance.
+fn exhaustive(s: &[Side; 2]) -> ([Feature; 2], bool, [Vec3; 2], f64) {
+    let touch = s[0].touch;
+    for x in 0..2 {
+        let (sx, sy) = (&s[x], &s[1 - x]);
+        for (vi, v) in sx.m.vertices().iter().enumerate() {
+            let p = sy.import(v);
+            let mut deepest = (f64::NEG_INFINITY, 0u32);
+            for (fi, f) in sy.m.faces.iter().enumerate() {
+                let d = f.plane.eval(&p);
+                if d > deepest.0 {
+                    deepest = (d, fi as u32);
+                }
+            }
+            if deepest.0 <= touch {
+                let st = ordered(x, Feature::vertex(vi as u32), Feature::face(deepest.1));
+                return (st, true, ordered(x, *v, p), 0.0);
+            }
+        }
+        for (ei, e) in sx.m.edges.iter().enumerate() {
+            let (tx, hx) = (sx.m.vert(e.tail), sx.m.vert(e.head));
+            let (a, b) = (sy.import(tx), sy.import(hx));
+            for (fi, f) in sy.m.faces.iter().enumerate() {
+                let (da, db) = (f.plane.eval(&a), f.plane.eval(&b));
+                if (da > touch && db > touch) || (da < -touch && db < -touch) {
+                    continue;
+                }
+                let l = if da == db {
+                    0.0
+                } else {
+                    (da / (da - db)).clamp(0.0, 1.0)
+                };
+                let q = point_at(&a, &b, l);
+                if sy
+                    .m
+                    .face_side_planes(fi as u32)
+                    .all(|(pl, _)| pl.eval(&q) >= -touch)
+                {
+                    let st = ordered(x, Feature::edge(ei as u32), Feature::face(fi as u32));
+                    return (st, true, ordered(x, point_at(tx, hx, l), q), 0.0);
+                }
+            }
+        }
+    }
+    // Apart: the least distance.
+    let mut best = (f64::INFINITY, [Feature::vertex(0); 2], [Vec3::zeros(); 2]);
+    for x in 0..2 {
+        let (sx, sy) = (&s[x], &s[1 - x]);
+        for (vi, v) in sx.m.vertices().iter().enumerate() {
+            let p = sy.import(v);
+            for (fi, f) in sy.m.faces.iter().enumerate() {
+                let d = f.plane.eval(&p);
+                if d >= 0.0
+                    && d < best.0
+                    && sy
+                        .m
+                        .face_side_planes(fi as u32)
+                        .all(|(pl, _)| pl.eval(&p) >= 0.0)
+                {
+                    let st = ordered(x, Feature::vertex(vi as u32), Feature::face(fi as u32));
+                    best = (d, st, ordered(x, *v, p - f.plane.n * d));
+                }
+            }
+        }
+    }
+    let feature = |m: &ConvexModel, e: u32, l: f64| {
+        let ed = &m.edges[e as usize];
+        if l <= 0.0 {
+            Feature::vertex(ed.tail)
+        } else if l >= 1.0 {
+            Feature::vertex(ed.head)
+        } else {
+            Feature::edge(e)
+        }
+    };
+    for (e0, d0) in s[0].m.edges.iter().enumerate() {
+        let (t0, h0) = (s[0].m.vert(d0.tail), s[0].m.vert(d0.head));
+        for (e1, d1) in s[1].m.edges.iter().enumerate() {
+            let (t1, h1) = (s[1].m.vert(d1.tail), s[1].m.vert(d1.head));
+            let (a, b) = (s[0].import(t1), s[0].import(h1));
+            let (u, w) = segment_segment_params(t0, h0, &a, &b);
+            let (p, q) = (point_at(t0, h0, u), point_at(&a, &b, w));
+            let d = (p - q).norm();
+            if d < best.0 {
+                let st = [feature(s[0].m, e0 as u32, u), feature(s[1].m, e1 as u32, w)];
+                best = (d, st, [p, point_at(t1, h1, w)]);
+            }
+        }
+    }
+    (
+        best.1,
+        best.0 <= touch,
+        best.2,
+        if best.0 <= touch { 0.0 } else { best.0 },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Pose;
+
+    /// The exhaustive fallback agrees with the search on random pairs.
+    #[test]
+    fn exhaustive_scan_agrees_with_search() {
+        let mut seed = 7u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut hull = |n: usize| {
+            let pts: Vec<[f64; 3]> = (0..n).map(|_| [rnd(), rnd(), rnd()]).collect();
+            ConvexModel::from_points(&pts).unwrap()
+        };
+        let models: Vec<ConvexModel> = (0..8).map(|k| hull(5 + 3 * k)).collect();
+        let mut contacts = 0;
+        for k in 0..200 {
+            let (m1, m2) = (&models[k % 8], &models[(k / 8) % 8]);
+            let t = [0.9 * (k as f64).sin(), 1.7 * (k as f64 * 0.37).cos(), 0.4];
+            let p2 = Pose::new([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], t);
+            let rel = RelPose::between(&Pose::identity(), &p2);
+            let rt = rel.rot.transpose();
+            let touch = TOUCH_ULPS * f64::EPSILON * (m1.radius() + m2.radius() + rel.trans.norm());
+            let sides = [
+                Side {
+                    m: m1,
+                    rot: rel.rot,
+                    trans: rel.trans,
+                    touch,
+                },
+                Side {
+                    m: m2,
+                    rot: rt,
+                    trans: -(rt * rel.trans),
+                    touch,
+                },
+            ];
+            let ans = vclip(m1, m2, &rel, [Feature::vertex(0); 2]).unwrap();
+            let (_, contact, points, d) = exhaustive(&sides);
+            assert_eq!(contact, ans.intersecting, "pair {k}");
+            assert!(
+                (d - ans.distance).abs() < 1e-12,
+                "pair {k}: {d} vs {}",
+                ans.distance
+            );
+            if !contact {
+                let q = rel.apply(&points[1]);
+                assert!(((points[0] - q).norm() - d).abs() < 1e-12);
+            }
+            contacts += contact as usize;
+        }
+        assert!(contacts > 20 && contacts < 180, "{contacts}");
+    }
 }
