@@ -417,8 +417,8 @@ impl Big {
         };
         let mut mag = Vec::new();
         let mut borrow = 0i64;
-        for i in 0..big.len() {
-            let mut d = big[i] as i64 - *small.get(i).unwrap_or(&0) as i64 - borrow;
+        for (i, &limb) in big.iter().enumerate() {
+            let mut d = limb as i64 - *small.get(i).unwrap_or(&0) as i64 - borrow;
             borrow = 0;
             if d < 0 {
                 d += 1 << 32;
@@ -1202,6 +1202,79 @@ fn long_coherent_sequence_terminates() {
     let _ = worst;
 }
 
+/// Largest signed distance of `p` to the face planes of `h`: 0 on the boundary.
+fn boundary_offset(h: &Posed, p: &Vec3) -> f64 {
+    h.faces
+        .iter()
+        .zip(&h.normals)
+        .map(|(f, n)| {
+            let off = f
+                .iter()
+                .map(|&i| h.verts[i].dot(n))
+                .fold(f64::NEG_INFINITY, f64::max);
+            p.dot(n) - off
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// One pair's penetration against the separating-axis brute force; true if they overlapped.
+/// `witnesses_on_boundary`: also check that the witnesses lie on the hulls' boundaries (with the
+/// test's own float face planes, so not on sliver hulls).
+fn check_penetration(
+    a: &ConvexModel,
+    pa: &Pose,
+    b: &ConvexModel,
+    pb: &Pose,
+    witnesses_on_boundary: bool,
+    what: &str,
+) -> bool {
+    let (wa, wb) = (posed(a, pa), posed(b, pb));
+    let size = size_of(&wa).max(size_of(&wb));
+    let tol = 1e-9 * size;
+    let (depth, _) = brute_depth(&wa, &wb);
+    let r = convex_penetration(a, pa, b, pb, None).unwrap();
+    if depth <= tol {
+        assert!(r.depth <= tol, "{what}");
+        return false;
+    }
+    assert!(r.intersecting, "{what}");
+    assert!(
+        (r.depth - depth).abs() <= tol,
+        "{what}: {} vs {depth}",
+        r.depth
+    );
+    assert!((r.normal.norm() - 1.0).abs() < 1e-12);
+    // Moving b by the depth along the normal separates the hulls (to rounding); a little less
+    // does not.
+    let moved = |s: f64| {
+        let mut p = *pb;
+        p.translation += r.normal * s;
+        brute_depth(&wa, &posed(b, &p)).0
+    };
+    assert!(
+        moved(r.depth).abs() <= tol,
+        "{what}: normal does not separate"
+    );
+    assert!(moved(r.depth - 1e-6 * size) > 0.0, "{what}");
+    // Witnesses: world(p1) = world(p2) + depth * normal, p1 on a's boundary, p2 on b's.
+    let (w1, w2) = (pa.transform_point(&r.p1), pb.transform_point(&r.p2));
+    assert!(
+        (w1 - w2 - r.normal * r.depth).norm() <= tol,
+        "{what}: witnesses"
+    );
+    if witnesses_on_boundary {
+        assert!(
+            boundary_offset(&wa, &w1).abs() <= tol,
+            "{what}: p1 not on a"
+        );
+        assert!(
+            boundary_offset(&wb, &w2).abs() <= tol,
+            "{what}: p2 not on b"
+        );
+    }
+    true
+}
+
 #[test]
 fn penetration_depth_matches_brute_force() {
     let mut rng = Rng(707);
@@ -1209,43 +1282,9 @@ fn penetration_depth_matches_brute_force() {
     for round in 0..rounds(600) {
         let (a, _) = random_hull(&mut rng, 4, 12);
         let (b, _) = random_hull(&mut rng, 4, 12);
-        let pa = rng.pose(0.5);
-        let pb = rng.pose(1.5);
-        let (wa, wb) = (posed(&a, &pa), posed(&b, &pb));
-        let size = size_of(&wa).max(size_of(&wb));
-        let (depth, _) = brute_depth(&wa, &wb);
-        let r = convex_penetration(&a, &pa, &b, &pb, None).unwrap();
-        let what = format!("penetration {round}");
-        if depth <= 1e-9 * size {
-            assert!(r.depth <= 1e-9 * size, "{what}");
-            continue;
-        }
-        checked += 1;
-        assert!(r.intersecting, "{what}");
-        assert!(
-            (r.depth - depth).abs() <= 1e-9 * size,
-            "{what}: {} vs {depth}",
-            r.depth
-        );
-        assert!((r.normal.norm() - 1.0).abs() < 1e-12);
-        // Moving b by the depth along the normal separates the hulls (to rounding); a little less
-        // does not.
-        let moved = |s: f64| {
-            let mut p = pb;
-            p.translation += r.normal * s;
-            brute_depth(&wa, &posed(&b, &p)).0
-        };
-        assert!(
-            moved(r.depth).abs() <= 1e-9 * size,
-            "{what}: normal does not separate"
-        );
-        assert!(moved(r.depth - 1e-6 * size) > 0.0, "{what}");
-        // Witnesses: p1 on a, p2 on b, world(p1) = world(p2) + depth * normal.
-        let (w1, w2) = (pa.transform_point(&r.p1), pb.transform_point(&r.p2));
-        assert!(
-            (w1 - w2 - r.normal * r.depth).norm() <= 1e-9 * size,
-            "{what}: witnesses"
-        );
+        let (pa, pb) = (rng.pose(0.5), rng.pose(1.5));
+        checked +=
+            check_penetration(&a, &pa, &b, &pb, true, &format!("penetration {round}")) as usize;
     }
     assert!(checked > 150, "{checked}");
     // Apart: depth 0, normal along the closest points.
@@ -1253,6 +1292,48 @@ fn penetration_depth_matches_brute_force() {
     let p = Pose::from_translation([10.0, 0.0, 0.0]);
     let r = convex_penetration(&a, &Pose::identity(), &a, &p, None).unwrap();
     assert!(!r.intersecting && r.depth == 0.0 && r.normal.x > 0.5);
+}
+
+#[test]
+fn penetration_depth_on_larger_and_degenerate_hulls() {
+    let mut rng = Rng(909);
+    let sphere = |rng: &mut Rng, n: usize| {
+        let p: Vec<[f64; 3]> = (0..n)
+            .map(|_| {
+                let u = rng.unit_vector();
+                [u.x, u.y, u.z]
+            })
+            .collect();
+        ConvexModel::from_points(&p).unwrap()
+    };
+    let mut perturbed = cube_grid(4);
+    for p in perturbed.iter_mut() {
+        for c in p.iter_mut() {
+            *c += rng.range(-1e-13, 1e-13);
+        }
+    }
+    let models = [
+        sphere(&mut rng, 40),
+        sphere(&mut rng, 60),
+        ConvexModel::from_points(&cube_grid(2)).unwrap(),
+        ConvexModel::from_points(&cylinder(2, 12, 0.7, 2.0)).unwrap(),
+        ConvexModel::from_points(&perturbed).unwrap(),
+    ];
+    let mut checked = 0;
+    for round in 0..rounds(60) {
+        let (i, j) = (rng.below(models.len()), rng.below(models.len()));
+        // Axis-aligned poses half of the time: parallel faces and edges, ties between candidates.
+        let (pa, pb) = if round % 2 == 0 {
+            (rng.pose(0.5), rng.pose(1.5))
+        } else {
+            let t = [rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), 0.0];
+            (Pose::identity(), Pose::from_translation(t))
+        };
+        let what = format!("larger penetration {round} ({i}, {j})");
+        checked +=
+            check_penetration(&models[i], &pa, &models[j], &pb, i != 4 && j != 4, &what) as usize;
+    }
+    assert!(checked > 20, "{checked}");
 }
 
 #[test]

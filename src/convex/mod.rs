@@ -287,11 +287,18 @@ pub fn convex_penetration(
     }
     let rel = RelPose::between(pose1, pose2);
     let pd = penetration::penetration_depth(m1, m2, &rel);
+    let depth = pd.depth.max(0.0);
+    let normal = pose1.rotation * pd.normal;
+    // Witnesses: model 2 moved out by the depth touches model 1 (to rounding); V-Clip finds where.
+    let mut out = *pose2;
+    out.translation += normal * depth;
+    let start = [d.feature1, d.feature2];
+    let touch = vclip::vclip(m1, m2, &RelPose::between(pose1, &out), start)?;
     Ok(ConvexPenetration {
         intersecting: true,
-        depth: pd.depth.max(0.0),
-        normal: pose1.rotation * pd.normal,
-        p1: pd.pa,
-        p2: rel.apply_inverse(&pd.pb),
+        depth,
+        normal,
+        p1: touch.points[0],
+        p2: touch.points[1],
     })
 }

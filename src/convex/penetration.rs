@@ -14,20 +14,19 @@
 //! the support is, so that true facets cost one neighbour scan. The Gauss-map test is relaxed by a
 //! small angular slack: extra candidates cannot lower the minimum (`h_P(n)` is at least the depth
 //! for every `n`, and it is evaluated with true supports), while a strict test could drop a true
-//! facet by rounding. Cost: `O(F1 V2 + F2 V1)` at worst for the faces, `O(E1 E2)` arc tests.
+//! facet by rounding. Only edge pairs whose arcs' bounding boxes share a cell of a grid over the
+//! sphere are tested. Cost: `O(F1 V2 + F2 V1)` at worst for the faces (hill climbs are short in
+//! practice); for the edges, `O(E1 E2)` arc tests at worst, near-linear for large hulls whose arcs
+//! are short.
 
-use super::closest::{point_at, segment_segment_params};
 use super::model::ConvexModel;
 use crate::math::{RelPose, Vec3};
 
-/// The deepest direction and witnesses, all in model 1's frame: translating model 2 by
-/// `depth * normal` makes the models touch, `pa` on model 1 and `pb` on model 2 with
-/// `pa = pb + depth * normal`.
+/// The penetration depth and direction, in model 1's frame: translating model 2 by
+/// `depth * normal` makes the models touch.
 pub(crate) struct Depth {
     pub depth: f64,
     pub normal: Vec3,
-    pub pa: Vec3,
-    pub pb: Vec3,
 }
 
 /// The vertex of `m` (positions `pts`, indexed like `m`'s vertices) maximising `dir . p`, by hill
@@ -65,6 +64,101 @@ fn on_arc(n: &Vec3, n1: &Vec3, n2: &Vec3, axis: &Vec3) -> bool {
     n1.cross(n).dot(axis) * s >= -ARC_SLACK && n.cross(n2).dot(axis) * s >= -ARC_SLACK
 }
 
+/// An edge seen on the Gauss map: the arc of normals from `n1` to `n2` (its faces' normals, both
+/// orthogonal to the edge's direction `u`), with a box around the arc.
+struct Arc {
+    u: Vec3,
+    n1: Vec3,
+    n2: Vec3,
+    mid: Vec3,
+    tail: u32,
+    lo: Vec3,
+    hi: Vec3,
+}
+
+impl Arc {
+    fn new(tail: u32, t: Vec3, h: Vec3, n1: Vec3, n2: Vec3) -> Arc {
+        // The arc lies in the triangle of its ends and of the crossing of its end tangents,
+        // (n1 + n2) / (1 + n1.n2); for arcs near a half circle that point runs off, and the arc is
+        // only known to be in the cube around the sphere.
+        let c = n1.dot(&n2);
+        let slack = Vec3::repeat(4.0 * ARC_SLACK);
+        let (lo, hi) = if c > -0.5 {
+            let apex = (n1 + n2) / (1.0 + c);
+            (
+                n1.inf(&n2).inf(&apex) - slack,
+                n1.sup(&n2).sup(&apex) + slack,
+            )
+        } else {
+            (Vec3::repeat(-2.0), Vec3::repeat(2.0))
+        };
+        Arc {
+            u: (h - t).normalize(),
+            n1,
+            n2,
+            mid: n1 + n2,
+            tail,
+            lo,
+            hi,
+        }
+    }
+}
+
+/// Arcs binned in a uniform grid of `m^3` cells over `[-1, 1]^3` (sorted `(cell, arc)` pairs).
+struct SphereGrid {
+    m: usize,
+    entries: Vec<(u32, u32)>,
+}
+
+impl SphereGrid {
+    fn cell_range(&self, lo: f64, hi: f64) -> (usize, usize) {
+        let f =
+            |x: f64| (((x + 1.0) * 0.5 * self.m as f64).floor().max(0.0) as usize).min(self.m - 1);
+        (f(lo), f(hi))
+    }
+
+    fn new(arcs: &[Arc]) -> SphereGrid {
+        let m = (((arcs.len() as f64).sqrt() * 0.5).ceil() as usize).clamp(1, 64);
+        let mut g = SphereGrid {
+            m,
+            entries: Vec::new(),
+        };
+        for (i, q) in arcs.iter().enumerate() {
+            let mut cells = Vec::new();
+            g.cells_of(q, |c| cells.push(c));
+            g.entries.extend(cells.into_iter().map(|c| (c, i as u32)));
+        }
+        g.entries.sort_unstable();
+        g
+    }
+
+    fn cells_of(&self, q: &Arc, mut f: impl FnMut(u32)) {
+        let (x0, x1) = self.cell_range(q.lo.x, q.hi.x);
+        let (y0, y1) = self.cell_range(q.lo.y, q.hi.y);
+        let (z0, z1) = self.cell_range(q.lo.z, q.hi.z);
+        for x in x0..=x1 {
+            for y in y0..=y1 {
+                for z in z0..=z1 {
+                    f(((x * self.m + y) * self.m + z) as u32);
+                }
+            }
+        }
+    }
+
+    /// Calls `f` with every arc sharing a cell with `q` (possibly more than once).
+    fn for_each_near(&self, q: &Arc, mut f: impl FnMut(usize)) {
+        self.cells_of(q, |c| {
+            let start = self.entries.partition_point(|e| e.0 < c);
+            for e in &self.entries[start..] {
+                if e.0 != c {
+                    break;
+                }
+                f(e.1 as usize);
+            }
+        });
+    }
+}
+
 /// Penetration depth of model 2 (posed by `rel` in model 1's frame) into model 1. A result with
 /// `depth <= 0` means the models do not overlap (some candidate direction separates them).
 pub(crate) fn penetration_depth(a: &ConvexModel, b: &ConvexModel, rel: &RelPose) -> Depth {
@@ -73,8 +167,6 @@ pub(crate) fn penetration_depth(a: &ConvexModel, b: &ConvexModel, rel: &RelPose)
     let mut best = Depth {
         depth: f64::INFINITY,
         normal: Vec3::z(),
-        pa: Vec3::zeros(),
-        pb: Vec3::zeros(),
     };
     let mut hint_b = 0u32;
     let mut hint_a = 0u32;
@@ -86,12 +178,9 @@ pub(crate) fn penetration_depth(a: &ConvexModel, b: &ConvexModel, rel: &RelPose)
         hint_b = ib;
         let h = ha + hb;
         if h < best.depth {
-            let pb = vb[ib as usize];
             best = Depth {
                 depth: h,
                 normal: n,
-                pa: pb + n * h,
-                pb,
             };
         }
     }
@@ -103,77 +192,70 @@ pub(crate) fn penetration_depth(a: &ConvexModel, b: &ConvexModel, rel: &RelPose)
         let (_, hb) = climb(b, &vb, &m, b.face(g)[0]);
         let h = ha + hb;
         if h < best.depth {
-            let pa = va[ia as usize];
             best = Depth {
                 depth: h,
                 normal: -m,
-                pa,
-                pb: pa + m * h,
             };
         }
     }
-    // Edge pairs whose Gauss arcs cross: A's arc from its faces' normals, (-B)'s from the negated
-    // normals of B's faces.
-    struct EdgeB {
-        dir: Vec3,
-        m1: Vec3,
-        m2: Vec3,
-        tail: u32,
-        t: Vec3,
-        h: Vec3,
-    }
-    let eb: Vec<EdgeB> = (0..b.num_edges())
+    // Edge pairs whose Gauss arcs cross: A's arcs between its faces' normals, (-B)'s between
+    // the negated normals of B's faces. The arcs of B are binned in a grid over the sphere's
+    // bounding cube, so that only arcs sharing a cell are tested (on large hulls arcs are short
+    // and this is near-linear; on small ones it is the plain double loop).
+    let arcs_a: Vec<Arc> = (0..a.num_edges())
+        .map(|e| {
+            let (t, h) = a.edge(e);
+            let (l, r) = a.edge_faces(e);
+            Arc::new(
+                t,
+                va[t as usize],
+                va[h as usize],
+                a.face_plane(l as usize).0,
+                a.face_plane(r as usize).0,
+            )
+        })
+        .collect();
+    let arcs_b: Vec<Arc> = (0..b.num_edges())
         .map(|e| {
             let (t, h) = b.edge(e);
             let (l, r) = b.edge_faces(e);
-            let (pt, ph) = (vb[t as usize], vb[h as usize]);
-            EdgeB {
-                dir: (ph - pt).normalize(),
-                m1: -(rel.rot * b.face_plane(l as usize).0),
-                m2: -(rel.rot * b.face_plane(r as usize).0),
-                tail: t,
-                t: pt,
-                h: ph,
-            }
+            Arc::new(
+                t,
+                vb[t as usize],
+                vb[h as usize],
+                -(rel.rot * b.face_plane(l as usize).0),
+                -(rel.rot * b.face_plane(r as usize).0),
+            )
         })
         .collect();
-    for e in 0..a.num_edges() {
-        let (t, h) = a.edge(e);
-        let (l, r) = a.edge_faces(e);
-        let (pt, ph) = (va[t as usize], va[h as usize]);
-        let u = (ph - pt).normalize();
-        let (n1, n2) = (a.face_plane(l as usize).0, a.face_plane(r as usize).0);
-        let mid = n1 + n2;
-        for q in &eb {
-            let c = u.cross(&q.dir);
+    let grid = SphereGrid::new(&arcs_b);
+    let mut seen = vec![u32::MAX; arcs_b.len()];
+    for (ia, qa) in arcs_a.iter().enumerate() {
+        grid.for_each_near(qa, |ib| {
+            if seen[ib] == ia as u32 {
+                return;
+            }
+            seen[ib] = ia as u32;
+            let qb = &arcs_b[ib];
+            let c = qa.u.cross(&qb.u);
             let cn = c.norm();
             if cn < 1e-12 {
-                continue; // parallel edges span no facet of their own
+                return; // parallel edges span no facet of their own
             }
             let mut n = c / cn;
-            if n.dot(&mid) < 0.0 {
+            if n.dot(&qa.mid) < 0.0 {
                 n = -n;
             }
-            if !on_arc(&n, &n1, &n2, &u) || !on_arc(&n, &q.m1, &q.m2, &q.dir) {
-                continue;
+            if !on_arc(&n, &qa.n1, &qa.n2, &qa.u) || !on_arc(&n, &qb.n1, &qb.n2, &qb.u) {
+                return;
             }
-            let (_, ha) = climb(a, va, &n, t);
-            let (_, hb) = climb(b, &vb, &-n, q.tail);
+            let (_, ha) = climb(a, va, &n, qa.tail);
+            let (_, hb) = climb(b, &vb, &-n, qb.tail);
             let depth = ha + hb;
             if depth < best.depth {
-                let (s, w) = segment_segment_params(&pt, &ph, &q.t, &q.h);
-                let pa = point_at(&pt, &ph, s);
-                let pb = point_at(&q.t, &q.h, w);
-                // Re-centre the witnesses on the exact depth along n.
-                let mid_point = (pa + pb) * 0.5;
-                best = Depth {
-                    depth,
-                    normal: n,
-                    pa: mid_point + n * (0.5 * depth),
-                    pb: mid_point - n * (0.5 * depth),
-                };
+                best = Depth { depth, normal: n };
             }
-        }
+        });
     }
     best
 }

@@ -11,6 +11,10 @@
 //! of the distance along the edge tells on which side of the crossing the edge's closest point lies,
 //! without computing it.
 //!
+//! Features nearer than a contact distance (64 ulps of the scene's size, about the rounding of
+//! posing a vertex) count as touching; a touching or overlapping pair ends the search with a
+//! common point.
+//!
 //! # Termination
 //!
 //! Let `delta(X, Y)` be the Euclidean distance between the point sets of the two features and
@@ -18,24 +22,33 @@
 //! pair `(delta, dim)` in lexicographic order:
 //!
 //! * moving to a neighbour of higher dimension (vertex -> edge, edge -> face) happens only when the
-//!   other feature's closest point lies strictly beyond the Voronoi plane shared with it, which
-//!   makes that neighbour strictly closer: `delta` decreases;
-//! * moving to a lower dimension (edge -> vertex when the closest point is beyond the vertex's plane;
-//!   face -> one of its edges when the closest point of the face is on its boundary, chosen as the
-//!   boundary edge nearest the other feature) keeps `delta` and lowers `dim`;
-//! * the one non-local move, the *local minimum* of a vertex under a face's plane but inside its
-//!   prism, jumps to the feature of the face's polyhedron nearest the vertex (or reports
-//!   penetration when the vertex is inside): the face lies on the polyhedron, so that feature is
-//!   strictly nearer than the face's plane is (equal only for a flat polyhedron, which we never
-//!   build), and `delta` decreases;
-//! * penetration (a vertex inside, an edge through a face) ends the search.
+//!   other feature's closest point lies strictly beyond the Voronoi plane shared with that
+//!   neighbour, which makes the neighbour strictly closer: `delta` decreases (edges test their
+//!   vertex planes first, so a face plane is only ever tried for a closest point between them);
+//! * moving to a lower dimension keeps `delta` and lowers `dim`: edge -> vertex when the closest
+//!   point is beyond the vertex's plane; face -> edge when the face's closest point to the other
+//!   feature is on the face's boundary (the other feature is outside the face's prism, or the
+//!   distance keeps decreasing out of it), the edge being the nearest among those whose side plane
+//!   the other feature's nearest point violates, which contain that closest point;
+//! * the one non-local move, from a *local minimum* (a vertex under a face's plane but inside its
+//!   prism), goes to the feature of the face's polyhedron nearest the vertex, or reports
+//!   penetration when the vertex is inside: the face lies on the polyhedron, so that feature is
+//!   strictly nearer than the face's plane is (equal only for a flat polyhedron, never built), and
+//!   `delta` decreases;
+//! * contact (a vertex inside, an edge through a face, features within the contact distance) ends
+//!   the search, and so does a final pair.
 //!
-//! So no state repeats and the search ends within `(V1+E1+F1)(V2+E2+F2)` updates. In floating point
-//! a near-tie could be decided inconsistently between two states; the transition function is
-//! deterministic on a finite set, so such a cycle is caught by Brent's cycle detection, and the
-//! pair of least distance on the cycle is reported (the states on it are within rounding of a tie).
-//! A hard bound of `4 (V1+E1+F1)(V2+E2+F2) + 64` iterations, beyond what either argument allows,
-//! turns any remaining surprise into `Error::Internal` instead of a loop.
+//! So no state repeats and the search ends within `(V1+E1+F1)(V2+E2+F2)` updates.
+//!
+//! In floating point a near-tie can be decided inconsistently by two states (we saw it only around
+//! sliver faces a few ulps wide). The decisions that must agree are computed identically (a face's
+//! side plane is its edge's plane negated bit for bit, a vertex's edge planes are the edges' vertex
+//! planes negated, edge-face slopes use the same endpoint values as vertex-face descents), which
+//! removes most of them. The transition function is deterministic on a finite set, so any
+//! remaining cycle is caught by Brent's cycle detection, and the answer then comes from an
+//! exhaustive scan of all feature pairs, which takes no Voronoi decision. A hard bound of
+//! `4 (V1+E1+F1)(V2+E2+F2) + 64` iterations, beyond what either argument allows, turns any
+//! remaining surprise into `Error::Internal` instead of a loop.
 
 use super::closest::{point_at, point_segment_param, segment_segment_params};
 use super::model::{ConvexModel, Plane};
