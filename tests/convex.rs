@@ -1098,7 +1098,7 @@ fn vclip_on_sliver_hulls() {
             }
         }
         models.push(ConvexModel::from_points(&grid).unwrap());
-        let sphere: Vec<[f64; 3]> = (0..60)
+        let sphere: Vec<[f64; 3]> = (0..40)
             .map(|_| {
                 let u = rng.unit_vector() * (1.0 + rng.range(-eps, eps));
                 [u.x, u.y, u.z]
@@ -1108,7 +1108,7 @@ fn vclip_on_sliver_hulls() {
         let needle = random_cloud(&mut rng, 12, [2.0, 1e-4, 1e-4]);
         models.push(ConvexModel::from_points(&needle).unwrap());
     }
-    for round in 0..rounds(600) {
+    for round in 0..rounds(300) {
         let a = &models[rng.below(models.len())];
         let b = &models[rng.below(models.len())];
         let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));

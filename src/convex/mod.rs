@@ -57,6 +57,7 @@ pub enum FeatureKind {
 
 /// A feature of a [`ConvexModel`]: its kind and its index among the features of that kind.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(C)]
 pub struct Feature {
     /// Vertex, edge or face.
     pub kind: FeatureKind,
@@ -159,7 +160,9 @@ pub struct ConvexDistance {
     pub feature1: Feature,
     /// Model 2's feature of the final pair.
     pub feature2: Feature,
-    /// Whether the models touch or overlap.
+    /// Whether the models touch or overlap. Models closer than the rounding of posing them (64
+    /// ulps of the scene's size: the models' radii about their origins plus the distance between
+    /// the origins) count as touching.
     pub intersecting: bool,
     /// Work done.
     pub stats: ConvexStats,
@@ -177,7 +180,8 @@ pub struct ConvexPenetration {
     /// it from model 1. When the models are apart: the direction from model 1's closest point to
     /// model 2's (zero if that distance is 0).
     pub normal: Vec3,
-    /// Deepest point of model 1 (model 1's frame); when apart, its closest point.
+    /// Deepest point of model 1 (model 1's frame): where model 2, moved out by `depth` along
+    /// `normal`, touches it (found by V-Clip on that pose); when apart, its closest point.
     pub p1: Vec3,
     /// Deepest point of model 2 (model 2's frame), with `world(p1) = world(p2) + depth * normal`;
     /// when apart, its closest point.

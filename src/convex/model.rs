@@ -87,6 +87,9 @@ pub struct ConvexModel {
 
 /// Checks coordinates and converts them.
 fn import_points(points: &[[f64; 3]]) -> Result<Vec<Vec3>, Error> {
+    if points.len() > u32::MAX as usize / 4 {
+        return Err(Error::InvalidArgument);
+    }
     points
         .iter()
         .map(|p| {
