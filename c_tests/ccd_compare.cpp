@@ -106,6 +106,7 @@ struct Workload {
     int poses;
     bool global_distance;  ///< minimum over all pairs by libccd (small meshes only)
     std::vector<PosePair> fixed;
+    bool contact = false;  ///< a is the box [-1,1]^3: b rests on its top face (contact_pair)
 };
 
 std::string pair_str(int i, int j) { return fmt("(%d,%d)", i, j); }
@@ -118,7 +119,7 @@ struct Ctx {
 
 void compare_pose(Ctx &c, const Workload &w, const OurModel &oa, const OurModel &ob, const PosePair &pp, int index) {
     Report &rep = c.rep;
-    rep.set_context(fmt("%s pose %d: %s", w.name.c_str(), index, pp.kind.c_str()));
+    rep.set_context(fmt("%s pose %d: %s", w.name.c_str(), index, pp.kind.c_str()), pose_class(pp));
     rep.count("ccd: poses compared");
     const int na = int(w.a.tris.size()), nb = int(w.b.tris.size());
     const World WA = to_world(w.a, pp.a), WB = to_world(w.b, pp.b);
@@ -249,6 +250,12 @@ std::vector<PosePair> make_poses(Ctx &c, const Workload &w) {
     };
     for (int k = 0; k < w.poses; ++k) {
         PosePair pp;
+        if (w.contact) {
+            pp = contact_pair(c.rng, w.b, k % 3, contact_gap(c.rng), contact_tilt(c.rng));
+            if (c.rng.uniform() < 0.3) add_offset(c.rng, pp);
+            out.push_back(pp);
+            continue;
+        }
         switch (k % 8) {
         case 0: pp = random_pair(c.rng, ra, rb, 1.02, 2.0, "separated"); break;
         case 1:
@@ -266,19 +273,23 @@ std::vector<PosePair> make_poses(Ctx &c, const Workload &w) {
 std::vector<Workload> workloads(Ctx &c) {
     Rng &g = c.rng;
     std::vector<Workload> w;
-    auto add = [&](const Mesh &a, const Mesh &b, int poses, bool global) {
-        w.push_back({a.name + " vs " + b.name, a, b, scaled(c.opt, poses), global, {}});
+    auto add = [&](const Mesh &a, const Mesh &b, int poses, bool global, bool contact = false) {
+        w.push_back({a.name + " vs " + b.name, a, b, scaled(c.opt, poses), global, {}, contact});
     };
     add(make_sphere(1, 6, 12), make_sphere(1, 6, 12), 300, true);
     add(make_torus(0.7, 0.3, 8, 16), make_sphere(0.8, 8, 16), 250, true);
     add(make_soup(g, 150, 1, 0.3), make_soup(g, 150, 1, 0.3), 300, true);
     add(make_thin(g, 150, 1, 0.4), make_thin(g, 150, 1, 0.4), 300, true);
     add(make_thin(g, 200, 1, 0.5), make_soup(g, 100, 1, 0.4), 200, true);
-    const Mesh bunny = normalized(load_or(c.opt.models_dir, "bunny.tris", make_sphere(1, 20, 56)));
-    const Mesh torus = normalized(load_or(c.opt.models_dir, "torus.tris", make_torus(0.7, 0.3, 18, 37)));
-    add(bunny, torus, 60, false);
+    const Mesh bunny = normalized(load_or(c.opt, "bunny.tris", make_sphere(1, 20, 56)));
+    const Mesh torus = normalized(load_or(c.opt, "torus.tris", make_torus(0.7, 0.3, 18, 37)));
+    add(bunny, torus, 40, false);
+    add(make_box(2), make_box(2), 300, true, true);
+    add(make_box(2), make_torus(0.7, 0.3, 8, 16), 200, true, true);
+    add(make_box(4), make_thin(g, 120, 0.8, 0.4), 200, true, true);
+    add(make_box(2), make_flat(g, 100, 1.2), 200, true, true);
     // Exact touching configurations at identity.
-    Workload e{"cube vs grid4x4 (exact)", make_cube(), make_grid(4, 4), 0, true, {}};
+    Workload e{"cube vs grid4x4 (exact)", make_cube(), make_grid(4, 4), 0, true, {}, false};
     for (const auto &t : std::vector<std::array<double, 3>>{{1, 1, 1}, {1, 1, -1}, {0, 0, 0}, {2, 2, 0.5}, {-1, -1, -1}, {3, 3, 1.25}}) {
         PosePair pp;
         pp.a = identity_pose();
@@ -298,10 +309,11 @@ int main(int argc, char **argv) {
     Ctx c;
     c.opt = parse_options(argc, argv);
     c.rng = Rng(c.opt.seed ^ 0xccdull);
-    std::printf("ccd_compare: seed %llu, scale %g, models '%s'\n", static_cast<unsigned long long>(c.opt.seed),
-                c.opt.scale, c.opt.models_dir.c_str());
+    std::printf("ccd_compare: seed %llu, scale %g, models [%s]\n", static_cast<unsigned long long>(c.opt.seed),
+                c.opt.scale, join(c.opt.models_dirs).c_str());
     const auto t0 = std::chrono::steady_clock::now();
     for (const Workload &w : workloads(c)) {
+        if (w.name.find(c.opt.only) == std::string::npos) continue;
         const auto t1 = std::chrono::steady_clock::now();
         const long failed_before = c.rep.failed();
         const OurModel oa(w.a), ob(w.b);

@@ -90,6 +90,7 @@ struct Workload {
     int pqph_every;  ///< route every k-th pose also through PQP.h (0: never)
     std::vector<PosePair> fixed;  ///< explicit poses (exact cases, motion paths); random ones otherwise
     bool same_mesh = false;       ///< a and b are the same mesh: also try coincident poses
+    bool contact = false;         ///< a is the box [-1,1]^3: b rests on its top face (contact_pair)
 };
 
 struct Ctx {
@@ -203,12 +204,48 @@ void check_tolerance(Ctx &c, const char *what, const ToleranceOut &o, const Pose
     }
 }
 
+/// One refused query per pose (rotating through the kinds of error) on the reused result objects.
+void error_path(Ctx &c, Objects &ob, const PosePair &pp, int index) {
+    Report &rep = c.rep;
+    PosePair bad = pp;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double d0 = pqp_distance_result_distance(ob.cached);
+    const int i1 = pqp_distance_result_id1(ob.cached), i2 = pqp_distance_result_id2(ob.cached);
+    const int n0 = pqp_collide_result_num_pairs(ob.col), c0 = pqp_collide_result_colliding(ob.col);
+    const int t0 = pqp_tolerance_result_closer_than_tolerance(ob.tol);
+    const double td0 = pqp_tolerance_result_distance(ob.tol);
+    int rc = 0, want = 0;
+    switch (index % 6) {
+    case 0: rc = our_distance(ob.cached, pp, ob.oa, ob.ob, 0, 0, 0).rc, want = PQP_ERR_INVALID_ARGUMENT; break;
+    case 1: rc = our_distance(ob.cached, pp, ob.oa, ob.ob, -1e-3, 0, 2).rc, want = PQP_ERR_INVALID_ARGUMENT; break;
+    case 2:
+        bad.b.R[index % 9] = nan;
+        rc = our_distance(ob.cached, bad, ob.oa, ob.ob, 0, 0, 2).rc, want = PQP_ERR_NONFINITE_POSE;
+        break;
+    case 3: rc = our_collide(ob.col, pp, ob.oa, ob.ob, 0).rc, want = PQP_ERR_INVALID_ARGUMENT; break;
+    case 4:
+        bad.a.T[index % 3] = std::numeric_limits<double>::infinity();
+        rc = our_collide(ob.col, bad, ob.oa, ob.ob, PQP_ALL_CONTACTS).rc, want = PQP_ERR_NONFINITE_POSE;
+        break;
+    default: rc = our_tolerance(ob.tol, pp, ob.oa, ob.ob, nan, 2).rc, want = PQP_ERR_INVALID_ARGUMENT;
+    }
+    rep.count("error paths exercised");
+    rep.check(rc == want, fmt("error path %d: rc %d, expected %d", index % 6, rc, want));
+    const double d1 = pqp_distance_result_distance(ob.cached), td1 = pqp_tolerance_result_distance(ob.tol);
+    rep.check((d1 == d0 || (std::isnan(d0) && std::isnan(d1))) && pqp_distance_result_id1(ob.cached) == i1 &&
+                  pqp_distance_result_id2(ob.cached) == i2 && pqp_collide_result_num_pairs(ob.col) == n0 &&
+                  pqp_collide_result_colliding(ob.col) == c0 &&
+                  pqp_tolerance_result_closer_than_tolerance(ob.tol) == t0 &&
+                  (td1 == td0 || (std::isnan(td0) && std::isnan(td1))),
+              "a refused query changed its result object");
+}
+
 // ---------------------------------------------------------------------------------------------------
 void compare_pose(Ctx &c, Objects &ob, const PosePair &pp, int index) {
     Report &rep = c.rep;
     const Workload &w = ob.w;
     const int na = int(w.a.tris.size()), nb = int(w.b.tris.size());
-    rep.set_context(fmt("%s pose %d: %s", w.name.c_str(), index, pp.kind.c_str()));
+    rep.set_context(fmt("%s pose %d: %s", w.name.c_str(), index, pp.kind.c_str()), pose_class(pp));
     const World WA = to_world(w.a, pp.a), WB = to_world(w.b, pp.b);
     const double band = band_for(WA, WB);
     rep.count("fcl: poses compared");
@@ -272,7 +309,9 @@ void compare_pose(Ctx &c, Objects &ob, const PosePair &pp, int index) {
                                       any_int ? "intersecting" : any_border ? "borderline only" : "separated",
                                       pose_str(pp).c_str());
             const bool we_wrong = any_int ? !of.colliding : (!any_border && of.colliding);
-            rep.disagreement("FCL", "first contact verdict", we_wrong, d);
+            rep.disagreement("FCL", !any_int && any_border ? "first contact verdict, only borderline pairs"
+                                                           : "first contact verdict",
+                             we_wrong, d);
         }
     }
 
@@ -301,10 +340,11 @@ void compare_pose(Ctx &c, Objects &ob, const PosePair &pp, int index) {
                                   fd.d, fd.b1, fd.b2, dref, pose_str(pp).c_str());
         if (ours_ok) rep.disagreement("FCL", f > dref ? "distance: FCL too large" : "distance: FCL too small", false, d);
         else rep.disagreement("FCL", fcl_ok ? "distance: ours wrong, FCL right" : "distance: both wrong", true, d);
-    } else if (!have_bf) {
-        dref = od.d;  // agreed within tolerance; the agreed value serves as reference below
-    }
+    }  // else FCL's distance (agreed within tolerance) is the reference below
     check_distance(c, "distance", od, w.a, w.b, WA, WB, pp, band, dref, dref);
+
+    // ---- an error path on the reused result objects: refused, and the results stay as they were
+    error_path(c, ob, pp, index);
 
     // ---- approximate distance (fresh result objects: create/destroy in the loop)
     static const double kApprox[][2] = {{0.1, 1e9}, {10, 0.05}, {0.05, 0.01}, {1.0, 1e-3}};
@@ -349,6 +389,8 @@ void compare_pose(Ctx &c, Objects &ob, const PosePair &pp, int index) {
         rep.check(hf.rc == PQP_OK && hf.colliding == !S.empty(), "PQP.h: first contact verdict");
         const DistanceOut hd = pqph_distance(&ob.hdist, pp, *ob.ha, *ob.hb, 0, 0, 2);
         check_distance(c, "PQP.h distance", hd, w.a, w.b, WA, WB, pp, band, dref, dref);
+        const DistanceOut hbad = pqph_distance(&ob.hdist, pp, *ob.ha, *ob.hb, 0, 0, 0);  // refused, untouched
+        rep.check(hbad.rc == PQP_ERR_INVALID_ARGUMENT && ob.hdist.Distance() == hd.d, "PQP.h: refused PQP_Distance");
         const DistanceOut ha = pqph_distance(&ob.hdist, pp, *ob.ha, *ob.hb, 0.1, 0.01, 3);
         check_distance(c, "PQP.h approximate distance", ha, w.a, w.b, WA, WB, pp, band, dref,
                        std::min(dref * 1.1, dref + 0.01));
@@ -367,6 +409,12 @@ std::vector<PosePair> make_poses(Ctx &c, const Workload &w, const FclPair &f) {
     const double ra = w.a.radius(), rb = w.b.radius();
     for (int k = 0; k < w.poses; ++k) {
         PosePair pp;
+        if (w.contact) {
+            pp = contact_pair(c.rng, w.b, k % 3, contact_gap(c.rng), contact_tilt(c.rng));
+            if (c.rng.uniform() < 0.3) add_offset(c.rng, pp);
+            out.push_back(pp);
+            continue;
+        }
         switch (k % 10) {
         case 0:
         case 1:
@@ -418,7 +466,7 @@ std::vector<PosePair> exact_poses(const std::vector<std::array<double, 3>> &ts, 
     return out;
 }
 
-std::vector<PosePair> path_poses(const std::string &dir, int every) {
+std::vector<PosePair> path_poses(const Options &o, int every) {
     auto read = [](const std::string &p, std::vector<Pose> *out) {
         FILE *fp = std::fopen(p.c_str(), "r");
         if (!fp) return false;
@@ -435,7 +483,8 @@ std::vector<PosePair> path_poses(const std::string &dir, int every) {
     };
     std::vector<Pose> p1, p2;
     std::vector<PosePair> out;
-    if (dir.empty() || !read(dir + "/torus1.path", &p1) || !read(dir + "/torus2.path", &p2)) return out;
+    const std::string f1 = find_model(o, "torus1.path"), f2 = find_model(o, "torus2.path");
+    if (f1.empty() || f2.empty() || !read(f1, &p1) || !read(f2, &p2)) return out;
     for (size_t i = 0; i < std::min(p1.size(), p2.size()); i += size_t(every)) {
         PosePair pp;
         pp.a = p1[i];
@@ -452,8 +501,9 @@ std::vector<Workload> workloads(Ctx &c) {
     const Options &o = c.opt;
     Rng &g = c.rng;
     std::vector<Workload> w;
-    auto add = [&](const Mesh &a, const Mesh &b, int poses, int pqph, bool same = false) {
+    auto add = [&](const Mesh &a, const Mesh &b, int poses, int pqph, bool same = false, bool contact = false) {
         Workload x;
+        x.contact = contact;
         x.name = a.name + " vs " + b.name;
         x.a = a;
         x.b = b;
@@ -474,11 +524,19 @@ std::vector<Workload> workloads(Ctx &c) {
     add(make_soup(g, 400, 1, 0.6), make_sphere(0.9, 8, 16), 100, 0);
     add(make_thin(g, 240, 1, 0.3), make_thin(g, 240, 1, 0.3), 200, 5);
     add(make_thin(g, 300, 1, 0.5), s12, 120, 0);
-    const Mesh bunny = normalized(load_or(o.models_dir, "bunny.tris", make_sphere(1, 20, 56)));
-    const Mesh torus = normalized(load_or(o.models_dir, "torus.tris", make_torus(0.7, 0.3, 18, 37)));
+    const Mesh bunny = normalized(load_or(o, "bunny.tris", make_sphere(1, 20, 56)));
+    const Mesh torus = normalized(load_or(o, "torus.tris", make_torus(0.7, 0.3, 18, 37)));
     add(bunny, torus, 100, 10);
     add(bunny, bunny, 60, 0, true);
     add(torus, s6, 100, 0);
+    // Resting contacts on a box face: face/edge/vertex down, gaps and penetrations of 1e-12..1e-2.
+    const Mesh box2 = make_box(2), box4 = make_box(4);
+    add(box4, box4, 300, 6, false, true);
+    add(box2, s12, 150, 0, false, true);
+    add(box4, make_thin(g, 200, 0.8, 0.4), 150, 0, false, true);
+    add(box2, t12, 150, 0, false, true);
+    add(box4, bunny, 100, 0, false, true);
+    add(box2, make_flat(g, 150, 1.2), 200, 4, false, true);
 
     // Exact data at exact poses: touching decided without a band (touching counts as colliding).
     const Mesh grid = make_grid(4, 4), cube = make_cube();
@@ -504,12 +562,13 @@ std::vector<Workload> workloads(Ctx &c) {
     }
     // The demo motion: two tori tumbling through each other (if the path files are available).
     Mesh t1, t2;
-    std::vector<PosePair> path = path_poses(o.models_dir, std::max(1, int(20 / o.scale)));
-    if (!path.empty() && load_tris(o.models_dir + "/torus1.tris", &t1) && load_tris(o.models_dir + "/torus2.tris", &t2)) {
+    std::vector<PosePair> path = path_poses(o, std::max(1, int(20 / o.scale)));
+    if (!path.empty() && load_tris(find_model(o, "torus1.tris"), &t1) && load_tris(find_model(o, "torus2.tris"), &t2)) {
         Workload p{"torus1 vs torus2 (demo path)", t1, t2, 0, 4, path, false};
         w.push_back(p);
     } else {
-        std::printf("note: demo path files not found in '%s'; skipping that workload\n", o.models_dir.c_str());
+        std::printf("note: torus1/torus2 .tris/.path not found in [%s]; skipping the demo path workload\n",
+                    join(o.models_dirs).c_str());
     }
     return w;
 }
@@ -520,10 +579,11 @@ int main(int argc, char **argv) {
     Ctx c;
     c.opt = parse_options(argc, argv);
     c.rng = Rng(c.opt.seed);
-    std::printf("fcl_compare: seed %llu, scale %g, models '%s'\n", static_cast<unsigned long long>(c.opt.seed),
-                c.opt.scale, c.opt.models_dir.c_str());
+    std::printf("fcl_compare: seed %llu, scale %g, models [%s]\n", static_cast<unsigned long long>(c.opt.seed),
+                c.opt.scale, join(c.opt.models_dirs).c_str());
     const auto t0 = std::chrono::steady_clock::now();
     for (const Workload &w : workloads(c)) {
+        if (w.name.find(c.opt.only) == std::string::npos) continue;
         const auto t1 = std::chrono::steady_clock::now();
         const long failed_before = c.rep.failed();
         Objects ob(w);

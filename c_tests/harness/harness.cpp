@@ -154,6 +154,41 @@ Mesh make_thin(Rng &rng, int n, double box, double size) {
     return m;
 }
 
+Mesh make_flat(Rng &rng, int n, double extent) {
+    Mesh m;
+    m.name = fmt("flat%d", n);
+    for (int k = 0; k < n; ++k) {
+        double a[3] = {rng.uniform(-extent, extent), rng.uniform(-extent, extent), 0}, b[3], c[3];
+        const double size = rng.log_uniform(1e-3, 0.5), eps = size * rng.log_uniform(1e-9, 1e-3);
+        b[0] = a[0] + size * rng.uniform(-1, 1);
+        b[1] = a[1] + size * rng.uniform(-1, 1);
+        b[2] = 0;
+        switch (k % 5) {
+        case 0:  // point
+            std::memcpy(b, a, sizeof b);
+            std::memcpy(c, a, sizeof c);
+            break;
+        case 1:  // segment
+            std::memcpy(c, b, sizeof c);
+            break;
+        case 2:  // collinear up to rounding
+            for (int i = 0; i < 3; ++i) c[i] = a[i] + 0.75 * (b[i] - a[i]);
+            break;
+        case 3:  // sliver
+            c[0] = 0.5 * (a[0] + b[0]) + eps * rng.uniform(-1, 1);
+            c[1] = 0.5 * (a[1] + b[1]) + eps * rng.uniform(-1, 1);
+            c[2] = 0;
+            break;
+        default:  // ordinary
+            c[0] = a[0] + size * rng.uniform(-1, 1);
+            c[1] = a[1] + size * rng.uniform(-1, 1);
+            c[2] = 0;
+        }
+        m.tris.push_back(tri_of(a, b, c));
+    }
+    return m;
+}
+
 Mesh make_grid(int nx, int ny) {
     Mesh m;
     m.name = fmt("grid%dx%d", nx, ny);
@@ -188,6 +223,29 @@ Mesh make_cube() {
     return m;
 }
 
+Mesh make_box(int nsub) {
+    Mesh m;
+    m.name = fmt("box%d", nsub);
+    auto c = [&](int i) { return -1.0 + 2.0 * i / nsub; };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = -1; side <= 1; side += 2) {
+            const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+            for (int i = 0; i < nsub; ++i)
+                for (int j = 0; j < nsub; ++j) {
+                    double q[4][3];
+                    const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+                    for (int k = 0; k < 4; ++k) {
+                        q[k][axis] = side;
+                        q[k][u] = c(i + di[k]);
+                        q[k][w] = c(j + dj[k]);
+                    }
+                    m.tris.push_back(tri_of(q[0], q[1], q[2]));
+                    m.tris.push_back(tri_of(q[0], q[2], q[3]));
+                }
+        }
+    return m;
+}
+
 bool load_tris(const std::string &path, Mesh *out) {
     std::ifstream in(path);
     if (!in) return false;
@@ -205,11 +263,23 @@ bool load_tris(const std::string &path, Mesh *out) {
     return true;
 }
 
-Mesh load_or(const std::string &dir, const std::string &file, const Mesh &fallback) {
+std::string find_model(const Options &o, const std::string &file) {
+    for (const std::string &d : o.models_dirs) {
+        const std::string p = d + "/" + file;
+        if (FILE *f = std::fopen(p.c_str(), "r")) {
+            std::fclose(f);
+            return p;
+        }
+    }
+    return "";
+}
+
+Mesh load_or(const Options &o, const std::string &file, const Mesh &fallback) {
     Mesh m;
-    if (!dir.empty() && load_tris(dir + "/" + file, &m)) return m;
-    std::printf("note: %s/%s not available, using generated %s instead\n", dir.empty() ? "(no models dir)" : dir.c_str(),
-                file.c_str(), fallback.name.c_str());
+    const std::string p = find_model(o, file);
+    if (!p.empty() && load_tris(p, &m)) return m;
+    std::printf("note: %s not found in [%s], using a generated %s instead\n", file.c_str(), join(o.models_dirs).c_str(),
+                fallback.name.c_str());
     return fallback;
 }
 
@@ -327,6 +397,61 @@ PosePair near_pair(Rng &rng, const Mesh &A, const Mesh &B, double ra, double rb,
         set_t(pp.b, base, (r.pb - r.pa) * (1 / r.dist), gap - r.dist);
         if (std::fabs(static_cast<double>(r.dist) - gap) < 1e-3 * gap) break;
     }
+    return pp;
+}
+
+static void matmul(const double *A, const double *B, double *C) {
+    double t[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) t[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
+    std::memcpy(C, t, sizeof t);
+}
+
+static void axis_rotation(const LV &axis, double angle, double *R) {
+    const double x = double(axis.x), y = double(axis.y), z = double(axis.z);
+    const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
+    const double M[9] = {t * x * x + c,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+                         t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+    std::memcpy(R, M, sizeof M);
+}
+
+double contact_gap(Rng &rng) {
+    if (rng.uniform() < 0.1) return 0;
+    return (rng.uniform() < 0.5 ? -1 : 1) * std::pow(10.0, rng.uniform(-12, -2));
+}
+
+double contact_tilt(Rng &rng) {
+    static const double tilts[4] = {0, 1e-9, 1e-6, 1e-3};
+    return tilts[rng.below(4)];
+}
+
+PosePair contact_pair(Rng &rng, const Mesh &B, int type, double gap, double tilt) {
+    static const char *names[3] = {"face", "edge", "vertex"};
+    double Rrel[9], M[9];
+    if (type == 2) {
+        random_rotation(rng, Rrel);
+    } else {
+        axis_rotation({0, 0, 1}, rng.uniform(0, 2 * M_PI), Rrel);
+        if (type == 1) {
+            axis_rotation({1, 0, 0}, M_PI / 4, M);
+            matmul(Rrel, M, Rrel);
+        }
+    }
+    if (tilt != 0) {
+        const double a = rng.uniform(0, 2 * M_PI);
+        axis_rotation({std::cos(a), std::sin(a), 0}, tilt, M);
+        matmul(M, Rrel, Rrel);
+    }
+    double zmin = 1e300;
+    for (const Tri &t : B.tris)
+        for (const auto &p : t.p) zmin = std::min(zmin, Rrel[6] * p[0] + Rrel[7] * p[1] + Rrel[8] * p[2]);
+    const double Trel[3] = {rng.uniform(-1.2, 1.2), rng.uniform(-1.2, 1.2), 1 + gap - zmin};
+    PosePair pp;
+    pp.a = rng.uniform() < 0.25 ? identity_pose() : random_pose(rng, 1.0);
+    matmul(pp.a.R, Rrel, pp.b.R);
+    for (int i = 0; i < 3; ++i)
+        pp.b.T[i] = pp.a.R[3 * i] * Trel[0] + pp.a.R[3 * i + 1] * Trel[1] + pp.a.R[3 * i + 2] * Trel[2] + pp.a.T[i];
+    pp.kind = fmt("contact %s gap %.1e tilt %.0e", names[type], gap, tilt);
     return pp;
 }
 
@@ -632,7 +757,8 @@ bool Report::check(bool ok, const std::string &what) {
 
 void Report::disagreement(const std::string &peer, const std::string &category, bool we_wrong,
                           const std::string &detail) {
-    const std::string key = peer + ": " + category + (we_wrong ? "  -> WE are wrong" : "  -> we are right");
+    const std::string key = peer + ": " + category + (cls_.empty() ? "" : " [" + cls_ + "]") +
+                            (we_wrong ? "  -> WE are wrong" : "  -> we are right");
     Cat &c = cats_[key];
     ++c.count;
     c.we_wrong = we_wrong;
@@ -642,7 +768,7 @@ void Report::disagreement(const std::string &peer, const std::string &category, 
                     detail.c_str());
     } else {
         ++passed_;
-        if (c.examples.size() < 3) c.examples.push_back("[" + ctx_ + "] " + detail);
+        if (c.examples.size() < 1) c.examples.push_back("[" + ctx_ + "] " + detail);
     }
 }
 
@@ -669,9 +795,28 @@ std::string fmt(const char *f, ...) {
     return buf;
 }
 
+std::string join(const std::vector<std::string> &v) {
+    std::string s;
+    for (const std::string &x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+}
+
 std::string pose_str(const PosePair &pp) {
     return fmt("%s T1=(%.17g %.17g %.17g) T2=(%.17g %.17g %.17g)", pp.kind.c_str(), pp.a.T[0], pp.a.T[1], pp.a.T[2],
                pp.b.T[0], pp.b.T[1], pp.b.T[2]);
+}
+
+std::string pose_class(const PosePair &pp) {
+    const std::string &k = pp.kind;
+    std::string cls;
+    auto starts = [&](const char *p) { return k.rfind(p, 0) == 0; };
+    if (starts("contact")) cls = k.substr(0, k.find(' ', 8));
+    else if (starts("near")) cls = "near";
+    else if (starts("exact")) cls = "exact";
+    else if (starts("path")) cls = "path";
+    else cls = k.substr(0, k.find(" +offset"));
+    if (k.find("+offset") != std::string::npos) cls += " +offset";
+    return cls;
 }
 
 Options parse_options(int argc, char **argv) {
@@ -687,10 +832,13 @@ Options parse_options(int argc, char **argv) {
         };
         if (a == "--seed") o.seed = std::strtoull(val().c_str(), nullptr, 0);
         else if (a == "--scale") o.scale = std::strtod(val().c_str(), nullptr);
-        else if (a == "--models") o.models_dir = val();
-        else if (a == "--verbose") o.verbose = true;
+        else if (a == "--models") {
+            const std::string d = val();
+            if (!d.empty()) o.models_dirs.push_back(d);
+        }
+        else if (a == "--only") o.only = val();
         else {
-            std::fprintf(stderr, "usage: %s [--seed N] [--scale X] [--models DIR] [--verbose]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--seed N] [--scale X] [--models DIR]... [--only NAME-PART]\n", argv[0]);
             std::exit(2);
         }
     }

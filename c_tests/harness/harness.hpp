@@ -54,12 +54,17 @@ Mesh make_sphere(double r, int nlat, int nlon);                   ///< UV sphere
 Mesh make_torus(double R, double r, int nu, int nv);              ///< 2*nu*nv tris
 Mesh make_soup(Rng &rng, int n, double box, double size);         ///< random triangles in a cube
 Mesh make_thin(Rng &rng, int n, double box, double size);         ///< slivers, needles, segments, points
+Mesh make_flat(Rng &rng, int n, double extent);                   ///< degenerate and thin triangles in z = 0
 Mesh make_grid(int nx, int ny);                                   ///< unit squares at z = 0, exact
 Mesh make_cube();                                                 ///< cube [-1,1]^3 (12 tris), exact
+Mesh make_box(int nsub);                                          ///< cube [-1,1]^3, faces nsub x nsub
 /// Reads a `.tris` file (n, then n*9 numbers). Returns false if missing or malformed.
 bool load_tris(const std::string &path, Mesh *out);
-/// `dir/file` if it loads, otherwise the fallback (with a note on stdout).
-Mesh load_or(const std::string &dir, const std::string &file, const Mesh &fallback);
+struct Options;
+/// The first `dir/file` that exists among the --models directories, else "".
+std::string find_model(const Options &o, const std::string &file);
+/// The model file if found and it loads, otherwise the fallback (with a note on stdout).
+Mesh load_or(const Options &o, const std::string &file, const Mesh &fallback);
 /// The mesh recentred at its bounding-box centre and scaled to radius ~1 (exact meshes unchanged).
 Mesh normalized(const Mesh &m);
 
@@ -88,6 +93,17 @@ void add_offset(Rng &rng, PosePair &pp);
 /// the pair that `closest` names (computed here in long double), a few times.
 PosePair near_pair(Rng &rng, const Mesh &A, const Mesh &B, double ra, double rb, double gap,
                    const std::function<std::pair<int, int>(const PosePair &)> &closest);
+/// Model b resting on the top face (z = 1) of the box [-1,1]^3 that model a is (in a's frame): b turned
+/// about z only (type 0: face on face for a box), turned 45 degrees about x too (type 1: edge down), or
+/// at random (type 2: vertex down); then tilted by `tilt` radians about a random horizontal axis, and
+/// lifted so that its lowest vertex is at height 1 + gap (gap < 0: penetration). Then both are placed
+/// at a random pose (a at the identity for a quarter of them).
+PosePair contact_pair(Rng &rng, const Mesh &B, int type, double gap, double tilt);
+/// gap for contact poses: 0, or +-10^U(-12,-2)
+double contact_gap(Rng &rng);
+/// tilt for contact poses: 0, 1e-9, 1e-6 or 1e-3 radians
+double contact_tilt(Rng &rng);
+
 /// Gram-Schmidt on the rows (for rotations read from files with few digits).
 void orthonormalize(double R[9]);
 
@@ -194,7 +210,12 @@ ToleranceOut pqph_tolerance(PQP_ToleranceResult *r, const PosePair &pp, PqpHMode
 class Report {
   public:
     explicit Report(std::string program) : program_(std::move(program)) {}
-    void set_context(const std::string &ctx) { ctx_ = ctx; }
+    /// Context printed with failures; `cls` (a pose class, see pose_class) breaks disagreement
+    /// categories down.
+    void set_context(const std::string &ctx, const std::string &cls = "") {
+        ctx_ = ctx;
+        cls_ = cls;
+    }
     const std::string &context() const { return ctx_; }
     /// A check of our library; prints and counts a failure when !ok.
     bool check(bool ok, const std::string &what);
@@ -211,7 +232,7 @@ class Report {
         bool we_wrong = false;
         std::vector<std::string> examples;
     };
-    std::string program_, ctx_;
+    std::string program_, ctx_, cls_;
     std::map<std::string, long> counters_;
     std::map<std::string, Cat> cats_;
     long passed_ = 0, failed_ = 0;
@@ -222,14 +243,17 @@ constexpr double kRel = 1e-9;
 inline double dist_tol(double d, double band) { return kRel * d + band; }
 
 std::string fmt(const char *f, ...) __attribute__((format(printf, 1, 2)));
+std::string join(const std::vector<std::string> &v);
 std::string pose_str(const PosePair &pp);
+/// Short class of a pose for the summary: "near", "contact face", "deep overlap", ... (+offset).
+std::string pose_class(const PosePair &pp);
 
 /// Command line shared by the programs.
 struct Options {
     uint64_t seed = 20240611;
     double scale = 1.0;  ///< workload multiplier
-    std::string models_dir;
-    bool verbose = false;
+    std::vector<std::string> models_dirs;  ///< searched in order (--models, repeatable)
+    std::string only;  ///< run only the workloads whose name contains this
 };
 Options parse_options(int argc, char **argv);
 int scaled(const Options &o, int n);  ///< max(1, round(n * scale))
