@@ -36,6 +36,7 @@
 pub mod bounding_volume;
 pub(crate) mod bvh;
 pub mod capi;
+pub mod convex;
 pub mod error;
 pub mod geometry;
 pub mod math;

@@ -22,15 +22,23 @@ impl Bvh {
         let n = tris.len();
         debug_assert!(n > 0);
         let mut order: Vec<u32> = Vec::new();
-        order.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+        order
+            .try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         order.extend(0..n as u32);
         let mut centroids: Vec<Vec3> = Vec::new();
-        centroids.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+        centroids
+            .try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         centroids.extend(tris.iter().map(|(t, _)| (t[0] + t[1] + t[2]) / 3.0));
         let mut nodes: Vec<Node> = Vec::new();
-        nodes.try_reserve_exact(2 * n - 1).map_err(|_| Error::ModelOutOfMemory)?;
+        nodes
+            .try_reserve_exact(2 * n - 1)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         let mut points: Vec<Vec3> = Vec::new();
-        points.try_reserve(3 * n).map_err(|_| Error::ModelOutOfMemory)?;
+        points
+            .try_reserve(3 * n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         let mut keys: Vec<f64> = Vec::new();
 
         // Work list of (node index, first, last exclusive, depth) over `order`.
@@ -52,7 +60,13 @@ impl Bvh {
                 continue;
             }
             let axis: Vec3 = axes.column(0).into();
-            let mid = split(range, &centroids, &axis, depth >= MEAN_SPLIT_MAX_DEPTH, &mut keys);
+            let mid = split(
+                range,
+                &centroids,
+                &axis,
+                depth >= MEAN_SPLIT_MAX_DEPTH,
+                &mut keys,
+            );
             let first = nodes.len();
             nodes[ni].child = first as i32;
             nodes.push(placeholder());
@@ -62,9 +76,12 @@ impl Bvh {
         }
 
         let mut leaf_tris = Vec::new();
-        leaf_tris.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+        leaf_tris
+            .try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         let mut ids = Vec::new();
-        ids.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+        ids.try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
         for &t in &order {
             leaf_tris.push(tris[t as usize].0);
             ids.push(tris[t as usize].1);
@@ -97,7 +114,13 @@ fn placeholder() -> Node {
 /// Partitions `range` (at least two triangles) and returns how many go to the first child (never 0
 /// nor all): those whose centroid projects below the mean, or the lower half by projection when the
 /// mean splits nothing off or `median` is asked for.
-fn split(range: &mut [u32], centroids: &[Vec3], axis: &Vec3, median: bool, keys: &mut Vec<f64>) -> usize {
+fn split(
+    range: &mut [u32],
+    centroids: &[Vec3],
+    axis: &Vec3,
+    median: bool,
+    keys: &mut Vec<f64>,
+) -> usize {
     let count = range.len();
     if !median {
         let mean = range
@@ -155,5 +178,141 @@ pub(crate) fn principal_axes(points: &[Vec3]) -> Mat3 {
         axes
     } else {
         Mat3::identity()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bounding_volume::BoundingVolume;
+
+    fn check_containment(bvh: &Bvh) {
+        // Every node's volumes contain every vertex of every triangle below it.
+        fn rec(b: &Bvh, i: usize, out: &mut Vec<usize>) {
+            match b.nodes[i].leaf_triangle() {
+                Some(t) => out.push(t),
+                None => {
+                    let c = b.nodes[i].first_child();
+                    rec(b, c, out);
+                    rec(b, c + 1, out);
+                }
+            }
+        }
+        for i in 0..bvh.nodes.len() {
+            let mut tris = Vec::new();
+            rec(bvh, i, &mut tris);
+            let node = &bvh.nodes[i];
+            for t in tris {
+                for v in &bvh.tris[t] {
+                    let eps = 1e-9 * (1.0 + v.norm());
+                    assert!(node.rss.contains(v, eps), "rss of node {i} misses {v:?}");
+                    assert!(node.obb.contains(v, eps), "obb of node {i} misses {v:?}");
+                }
+            }
+        }
+    }
+
+    fn tri(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Tri {
+        [Vec3::from(a), Vec3::from(b), Vec3::from(c)]
+    }
+
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+
+    #[test]
+    fn every_node_contains_its_triangles() {
+        let mut s = 11u64;
+        for (n, scale, offset) in [
+            (1, 1.0, 0.0),
+            (2, 1.0, 0.0),
+            (57, 1.0, 0.0),
+            (300, 1e-4, 5.0),
+            (500, 1e3, 1e6),
+        ] {
+            let tris: Vec<(Tri, i32)> = (0..n)
+                .map(|i| {
+                    let c = Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)) * 10.0 * scale;
+                    let mut v = || {
+                        (c + Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)) * scale)
+                            .add_scalar(offset)
+                    };
+                    ([v(), v(), v()], i)
+                })
+                .collect();
+            let bvh = Bvh::build(tris).unwrap();
+            assert_eq!(bvh.nodes.len(), 2 * n as usize - 1);
+            check_containment(&bvh);
+            let mut ids = bvh.ids.clone();
+            ids.sort();
+            assert_eq!(ids, (0..n).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn flat_and_degenerate_input_builds_with_small_depth() {
+        // All triangles identical: centroids all equal, the mean splits nothing off.
+        let same: Vec<(Tri, i32)> = (0..1000)
+            .map(|i| (tri([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), i))
+            .collect();
+        let b = Bvh::build(same).unwrap();
+        assert!(b.depth() <= 11, "depth {}", b.depth());
+        check_containment(&b);
+        // All points at one place.
+        let points: Vec<(Tri, i32)> = (0..64)
+            .map(|i| (tri([2.0; 3], [2.0; 3], [2.0; 3]), i))
+            .collect();
+        let b = Bvh::build(points).unwrap();
+        assert!(b.depth() <= 7);
+        check_containment(&b);
+        // Collinear segments.
+        let segs: Vec<(Tri, i32)> = (0..100)
+            .map(|i| {
+                let x = i as f64;
+                (
+                    tri([x, 0.0, 0.0], [x + 0.5, 0.0, 0.0], [x + 0.25, 0.0, 0.0]),
+                    i,
+                )
+            })
+            .collect();
+        check_containment(&Bvh::build(segs).unwrap());
+    }
+
+    #[test]
+    fn exponentially_spaced_input_keeps_depth_bounded() {
+        // A mean split peels one triangle per level here; the median fallback bounds the depth.
+        let n = 2000;
+        let tris: Vec<(Tri, i32)> = (0..n)
+            .map(|i| {
+                let x = 1.01f64.powi(i);
+                (tri([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 0.0, 1.0]), i)
+            })
+            .collect();
+        let b = Bvh::build(tris).unwrap();
+        assert!(b.depth() <= MAX_DEPTH, "depth {}", b.depth());
+        check_containment(&b);
+    }
+
+    #[test]
+    fn principal_axes_are_orthonormal_and_ordered() {
+        let pts: Vec<Vec3> = (0..50)
+            .map(|i| {
+                let t = i as f64;
+                Vec3::new(3.0 * t.sin(), t.cos(), 0.1 * (2.0 * t).sin())
+            })
+            .collect();
+        let ax = principal_axes(&pts);
+        assert!((ax.transpose() * ax - Mat3::identity()).norm() < 1e-12);
+        assert!((ax.determinant() - 1.0).abs() < 1e-12);
+        assert!(ax.column(0).x.abs() > 0.9);
+        // A single point has no spread: any orthonormal frame will do, but it must be one.
+        let one = principal_axes(&[Vec3::new(1.0, 2.0, 3.0)]);
+        assert!((one.transpose() * one - Mat3::identity()).norm() < 1e-12);
+        // Coordinates whose squares overflow fall back to the identity rather than NaN.
+        let huge = principal_axes(&[Vec3::new(1e200, 0.0, 0.0), Vec3::new(-1e200, 1.0, 0.0)]);
+        assert_eq!(huge, Mat3::identity());
     }
 }

@@ -15,10 +15,10 @@ pub use collide::{collide, collide_into, CollideResult, ContactMode, ContactPair
 pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
 pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
 
+use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
 use crate::model::Model;
-use crate::bvh::Bvh;
 
 /// Work counters and time of one query.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -97,13 +97,17 @@ pub fn tolerance_into(
     qsize: usize,
 ) -> Result<(), Error> {
     let start = Instant::now();
-    if !(tolerance >= 0.0) || qsize < 1 {
+    if tolerance.is_nan() || tolerance < 0.0 || qsize < 1 {
         return Err(Error::InvalidArgument);
     }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let mut search = ClosestSearch::new(b1, b2, rel, TriCache::pair_for(&result.cache, m1, m2));
     // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair.
-    search.run(qsize, |bound, d| bound > tolerance || bound >= d, |d| d <= tolerance);
+    search.run(
+        qsize,
+        |bound, d| bound > tolerance || bound >= d,
+        |d| d <= tolerance,
+    );
     let best = search.best;
     result.stats = search.stats;
     result.tolerance = tolerance;

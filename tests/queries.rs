@@ -1,0 +1,386 @@
+//! The three queries against brute force over all triangle pairs (independent routines in
+//! `common`), on random soups, spheres and tori in random poses.
+
+mod common;
+
+use common::{apply, brute, norm, point_tri, sub, Mesh, Rng};
+use pqp::{
+    collide, distance, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult,
+    Model, Pose,
+};
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()) + 1e-12
+}
+
+/// Checks the distance answer of the library against brute force, with its points.
+fn check_distance(a: &Mesh, ma: &Model, pa: &Pose, b: &Mesh, mb: &Model, pb: &Pose, qsize: usize) {
+    let truth = brute(a, pa, b, pb);
+    let opts = DistanceOptions {
+        qsize,
+        ..DistanceOptions::default()
+    };
+    let r = distance(ma, pa, mb, pb, &opts).unwrap();
+    assert!(
+        close(r.distance, truth.distance),
+        "distance {} vs brute {} (qsize {qsize})",
+        r.distance,
+        truth.distance
+    );
+    assert_eq!(r.overlap, truth.distance == 0.0);
+    // The points lie on the named triangles and are `distance` apart in the world.
+    let p1 = [r.p1.x, r.p1.y, r.p1.z];
+    let p2 = [r.p2.x, r.p2.y, r.p2.z];
+    assert!(point_tri(p1, &a.tris[r.id1 as usize]) < 1e-9);
+    assert!(point_tri(p2, &b.tris[r.id2 as usize]) < 1e-9);
+    let gap = norm(sub(apply(pa, p1), apply(pb, p2)));
+    assert!(close(gap, r.distance) || (gap - r.distance).abs() < 1e-9);
+}
+
+#[test]
+fn collide_matches_brute_force_on_random_soups() {
+    let mut rng = Rng::new(1);
+    let mut colliding_poses = 0;
+    for case in 0..60 {
+        let a = Mesh::soup(&mut rng, 40 + case, 1.0, 0.4);
+        let b = Mesh::soup(&mut rng, 30 + case, 1.0, 0.4);
+        let (ma, mb) = (a.model(), b.model());
+        for _ in 0..5 {
+            let (pa, pb) = (rng.pose(0.5), rng.pose(2.5));
+            let truth = brute(&a, &pa, &b, &pb);
+            let all = collide(&ma, &pa, &mb, &pb, ContactMode::All).unwrap();
+            let mut got: Vec<(i32, i32)> = all.pairs().iter().map(|p| (p.id1, p.id2)).collect();
+            got.sort();
+            assert_eq!(got, truth.pairs, "case {case}");
+            let first = collide(&ma, &pa, &mb, &pb, ContactMode::First).unwrap();
+            assert_eq!(first.colliding(), !truth.pairs.is_empty());
+            assert!(first.num_pairs() <= 1);
+            if let Some(p) = first.pairs().first() {
+                assert!(truth.pairs.contains(&(p.id1, p.id2)));
+            }
+            colliding_poses += usize::from(all.colliding());
+        }
+    }
+    // The workload must exercise both answers.
+    assert!(
+        colliding_poses > 50 && colliding_poses < 250,
+        "{colliding_poses}"
+    );
+}
+
+#[test]
+fn distance_matches_brute_force_on_random_soups() {
+    let mut rng = Rng::new(2);
+    for case in 0..40 {
+        let a = Mesh::soup(&mut rng, 30 + case, 1.0, 0.3);
+        let b = Mesh::soup(&mut rng, 20 + case, 1.0, 0.3);
+        let (ma, mb) = (a.model(), b.model());
+        for k in 0..4 {
+            let spread = [0.5, 2.0, 5.0, 50.0][k];
+            let (pa, pb) = (rng.pose(spread), rng.pose(spread));
+            for qsize in [1, 2, 8, 1000] {
+                check_distance(&a, &ma, &pa, &b, &mb, &pb, qsize);
+            }
+        }
+    }
+}
+
+#[test]
+fn distance_matches_brute_force_on_spheres_and_tori() {
+    let mut rng = Rng::new(3);
+    let sphere = Mesh::sphere(1.0, 16, 10);
+    let torus = Mesh::torus(1.0, 0.3, 18, 10);
+    let (ms, mt) = (sphere.model(), torus.model());
+    for gap in [1e-6, 1e-3, 0.1, 1.0, 3.0] {
+        for _ in 0..6 {
+            let pa = rng.pose(0.0);
+            // Place the torus so the bounding spheres are `gap` apart along a random direction.
+            let dir = rng.point(1.0);
+            let len = norm(dir);
+            let off = (2.3 + gap) / len;
+            let pb = Pose::new(rng.rotation(), [dir[0] * off, dir[1] * off, dir[2] * off]);
+            check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, 2);
+        }
+    }
+    // Overlapping poses: sphere through the torus.
+    for _ in 0..10 {
+        let (pa, pb) = (rng.pose(0.3), rng.pose(0.3));
+        check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, 2);
+    }
+}
+
+#[test]
+fn approximate_distance_honours_both_bounds() {
+    let mut rng = Rng::new(4);
+    let a = Mesh::sphere(1.0, 24, 14);
+    let b = Mesh::sphere(1.05, 20, 12);
+    let (ma, mb) = (a.model(), b.model());
+    for _ in 0..20 {
+        let (pa, pb) = (rng.pose(0.02), rng.pose(0.02));
+        let truth = brute(&a, &pa, &b, &pb).distance;
+        for (rel, abs) in [
+            (0.1, f64::INFINITY),
+            (0.5, 1e-3),
+            (1.0, 0.0),
+            (0.0, 0.01),
+            (0.2, 0.02),
+        ] {
+            let opts = DistanceOptions {
+                rel_err: rel,
+                abs_err: abs,
+                qsize: 2,
+            };
+            let r = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+            let slack = 1e-12;
+            assert!(r.distance >= truth - slack, "{} < {truth}", r.distance);
+            assert!(
+                r.distance <= (truth * (1.0 + rel)).min(truth + abs) + slack,
+                "rel {rel} abs {abs}: {} vs {truth}",
+                r.distance
+            );
+        }
+    }
+}
+
+#[test]
+fn relative_error_prunes_work() {
+    // Nested shells: the exact query must visit many volume pairs, a 10% bound far fewer.
+    let a = Mesh::sphere(1.0, 60, 40);
+    let b = Mesh::sphere(1.05, 60, 40);
+    let (ma, mb) = (a.model(), b.model());
+    let here = Pose::identity();
+    let exact = distance(&ma, &here, &mb, &here, &DistanceOptions::default()).unwrap();
+    let opts = DistanceOptions {
+        rel_err: 0.1,
+        abs_err: f64::INFINITY,
+        qsize: 2,
+    };
+    let approx = distance(&ma, &here, &mb, &here, &opts).unwrap();
+    assert!(approx.distance <= exact.distance * 1.1 + 1e-12);
+    assert!(
+        approx.stats.bv_tests * 2 < exact.stats.bv_tests,
+        "{:?} vs {:?}",
+        approx.stats,
+        exact.stats
+    );
+}
+
+#[test]
+fn tolerance_verdict_matches_brute_force() {
+    let mut rng = Rng::new(5);
+    for case in 0..30 {
+        let a = Mesh::soup(&mut rng, 30 + case, 1.0, 0.3);
+        let b = Mesh::soup(&mut rng, 25, 1.0, 0.3);
+        let (ma, mb) = (a.model(), b.model());
+        for _ in 0..4 {
+            let (pa, pb) = (rng.pose(1.5), rng.pose(1.5));
+            let truth = brute(&a, &pa, &b, &pb).distance;
+            for t in [0.0, 0.01, 0.1, 0.3, 1.0] {
+                if (truth - t).abs() < 1e-9 {
+                    continue;
+                }
+                let r = tolerance(&ma, &pa, &mb, &pb, t, 2).unwrap();
+                assert_eq!(r.closer_than_tolerance, truth <= t, "t {t} truth {truth}");
+                if r.closer_than_tolerance {
+                    assert!(r.distance <= t && r.distance >= truth - 1e-12);
+                    let p1 = [r.p1.x, r.p1.y, r.p1.z];
+                    let p2 = [r.p2.x, r.p2.y, r.p2.z];
+                    assert!(point_tri(p1, &a.tris[r.id1 as usize]) < 1e-9);
+                    assert!(point_tri(p2, &b.tris[r.id2 as usize]) < 1e-9);
+                    let gap = norm(sub(apply(&pa, p1), apply(&pb, p2)));
+                    assert!((gap - r.distance).abs() < 1e-9);
+                } else {
+                    assert!(r.distance > t && r.distance <= truth + 1e-12);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn tolerance_is_cheaper_than_distance() {
+    let a = Mesh::sphere(1.0, 40, 30);
+    let b = Mesh::sphere(1.0, 40, 30);
+    let (ma, mb) = (a.model(), b.model());
+    let (pa, pb) = (Pose::identity(), Pose::from_translation([2.05, 0.1, 0.0]));
+    let d = distance(&ma, &pa, &mb, &pb, &DistanceOptions::default()).unwrap();
+    let far = tolerance(&ma, &pa, &mb, &pb, 0.01, 2).unwrap();
+    let near = tolerance(&ma, &pa, &mb, &pb, 0.2, 2).unwrap();
+    assert!(!far.closer_than_tolerance && near.closer_than_tolerance);
+    assert!(far.stats.bv_tests < d.stats.bv_tests);
+    assert!(near.stats.bv_tests < d.stats.bv_tests);
+}
+
+#[test]
+fn triangle_cache_gives_same_answers_with_less_work() {
+    let mut rng = Rng::new(6);
+    let a = Mesh::torus(1.0, 0.3, 40, 20);
+    let b = Mesh::torus(1.0, 0.3, 40, 20);
+    let (ma, mb) = (a.model(), b.model());
+    let mut warm = DistanceResult::new();
+    let (mut warm_tests, mut cold_tests) = (0, 0);
+    let r0 = rng.rotation();
+    for k in 0..30 {
+        let s = k as f64 * 0.01;
+        let (c, sn) = (s.cos(), s.sin());
+        let rot = [[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]];
+        let pb = Pose::new(rot, [2.2 + s * 0.1, 0.3, 0.1]);
+        let pa = Pose::new(r0, [0.0; 3]);
+        let cold = distance(&ma, &pa, &mb, &pb, &DistanceOptions::default()).unwrap();
+        distance_into(&mut warm, &ma, &pa, &mb, &pb, &DistanceOptions::default()).unwrap();
+        assert!(close(cold.distance, warm.distance));
+        warm_tests += warm.stats.bv_tests;
+        cold_tests += cold.stats.bv_tests;
+    }
+    assert!(warm_tests < cold_tests, "{warm_tests} vs {cold_tests}");
+    // A cached pair from other models is ignored, not misused.
+    let c = Mesh::sphere(0.5, 8, 6);
+    let mc = c.model();
+    let far = Pose::from_translation([5.0, 0.0, 0.0]);
+    distance_into(
+        &mut warm,
+        &ma,
+        &Pose::identity(),
+        &mc,
+        &far,
+        &DistanceOptions::default(),
+    )
+    .unwrap();
+    let truth = brute(&a, &Pose::identity(), &c, &far).distance;
+    assert!(close(warm.distance, truth));
+}
+
+#[test]
+fn overlap_is_flagged_with_an_intersecting_pair() {
+    let a = Mesh::sphere(1.0, 12, 8);
+    let b = Mesh::sphere(1.0, 12, 8);
+    let (ma, mb) = (a.model(), b.model());
+    let (pa, pb) = (Pose::identity(), Pose::from_translation([1.0, 0.2, 0.1]));
+    let r = distance(&ma, &pa, &mb, &pb, &DistanceOptions::default()).unwrap();
+    assert!(r.overlap);
+    assert_eq!(r.distance, 0.0);
+    let ta = common::apply_tri(&pa, &a.tris[r.id1 as usize]);
+    let tb = common::apply_tri(&pb, &b.tris[r.id2 as usize]);
+    assert_eq!(common::tri_tri(&ta, &tb), 0.0);
+    // The points are one world point common to both triangles.
+    let w1 = apply(&pa, [r.p1.x, r.p1.y, r.p1.z]);
+    let w2 = apply(&pb, [r.p2.x, r.p2.y, r.p2.z]);
+    assert!(norm(sub(w1, w2)) < 1e-12);
+    assert!(point_tri(w1, &ta) < 1e-12 && point_tri(w1, &tb) < 1e-12);
+}
+
+#[test]
+fn degenerate_triangles_answer_point_and_segment_queries() {
+    // A mesh of one point, and one of one segment, against a sphere.
+    let sphere = Mesh::sphere(1.0, 20, 12);
+    let ms = sphere.model();
+    let point =
+        Model::from_triangles([([0.0, 0.0, 3.0], [0.0, 0.0, 3.0], [0.0, 0.0, 3.0], 5)]).unwrap();
+    let seg =
+        Model::from_triangles([([-5.0, 0.0, 2.0], [5.0, 0.0, 2.0], [0.0, 0.0, 2.0], 6)]).unwrap();
+    let here = Pose::identity();
+    let truth_p = sphere
+        .tris
+        .iter()
+        .map(|t| point_tri([0.0, 0.0, 3.0], t))
+        .fold(f64::INFINITY, f64::min);
+    let r = distance(&ms, &here, &point, &here, &DistanceOptions::default()).unwrap();
+    assert!(close(r.distance, truth_p));
+    assert_eq!(r.id2, 5);
+    let seg_mesh = Mesh {
+        tris: vec![[[-5.0, 0.0, 2.0], [5.0, 0.0, 2.0], [0.0, 0.0, 2.0]]],
+    };
+    let truth_s = brute(&sphere, &here, &seg_mesh, &here).distance;
+    let r = distance(&ms, &here, &seg, &here, &DistanceOptions::default()).unwrap();
+    assert!(close(r.distance, truth_s));
+    assert!(truth_s > 0.9 && truth_s <= 1.0);
+}
+
+#[test]
+fn large_offsets_and_tiny_gaps() {
+    // Two parallel squares 1e-9 apart, a million units from the origin.
+    let off = 1e6;
+    let sq = |z: f64| {
+        Model::from_triangles([
+            (
+                [off, off, z],
+                [off + 1.0, off, z],
+                [off + 1.0, off + 1.0, z],
+                0,
+            ),
+            (
+                [off, off, z],
+                [off + 1.0, off + 1.0, z],
+                [off, off + 1.0, z],
+                1,
+            ),
+        ])
+        .unwrap()
+    };
+    let (a, b) = (sq(off), sq(off + 1e-6));
+    let here = Pose::identity();
+    let r = distance(&a, &here, &b, &here, &DistanceOptions::default()).unwrap();
+    // The exact answer of the stored doubles.
+    let gap = (off + 1e-6) - off;
+    assert!((r.distance - gap).abs() < 1e-12, "{}", r.distance);
+    assert!(!collide(&a, &here, &b, &here, ContactMode::All)
+        .unwrap()
+        .colliding());
+}
+
+#[test]
+fn queries_validate_their_arguments() {
+    let m = Mesh::sphere(1.0, 6, 4).model();
+    let here = Pose::identity();
+    let unbuilt = Model::new();
+    assert_eq!(
+        collide(&m, &here, &unbuilt, &here, ContactMode::All).unwrap_err(),
+        pqp::Error::UnprocessedModel
+    );
+    let mut bad = Pose::identity();
+    bad.translation.x = f64::NAN;
+    assert_eq!(
+        distance(&m, &bad, &m, &here, &DistanceOptions::default()).unwrap_err(),
+        pqp::Error::NonFinitePose
+    );
+    bad = Pose::identity();
+    bad.rotation[(1, 2)] = f64::INFINITY;
+    assert_eq!(
+        tolerance(&m, &here, &m, &bad, 0.1, 2).unwrap_err(),
+        pqp::Error::NonFinitePose
+    );
+    for opts in [
+        DistanceOptions {
+            rel_err: -0.1,
+            ..Default::default()
+        },
+        DistanceOptions {
+            abs_err: f64::NAN,
+            ..Default::default()
+        },
+        DistanceOptions {
+            qsize: 0,
+            ..Default::default()
+        },
+    ] {
+        assert_eq!(
+            distance(&m, &here, &m, &here, &opts).unwrap_err(),
+            pqp::Error::InvalidArgument
+        );
+    }
+    assert_eq!(
+        tolerance(&m, &here, &m, &here, -1.0, 2).unwrap_err(),
+        pqp::Error::InvalidArgument
+    );
+    assert_eq!(
+        tolerance(&m, &here, &m, &here, f64::NAN, 2).unwrap_err(),
+        pqp::Error::InvalidArgument
+    );
+    // A model against itself is a valid query: it touches everywhere.
+    assert_eq!(
+        distance(&m, &here, &m, &here, &DistanceOptions::default())
+            .unwrap()
+            .distance,
+        0.0
+    );
+}
