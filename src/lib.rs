@@ -36,6 +36,8 @@
 pub mod bounding_volume;
 pub(crate) mod bvh;
 pub mod capi;
+#[doc(hidden)]
+pub mod diagnostics;
 pub mod error;
 pub mod geometry;
 pub mod math;
