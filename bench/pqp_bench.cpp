@@ -18,6 +18,9 @@
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/math/bv/RSS.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/detail/traversal/collision/mesh_collision_traversal_node.h>
+#include <fcl/narrowphase/detail/traversal/collision_node.h>
+#include <fcl/narrowphase/detail/traversal/distance/mesh_distance_traversal_node.h>
 #include <fcl/narrowphase/distance.h>
 #include <malloc.h>
 
@@ -288,6 +291,7 @@ struct VariantRow {
     double med, mean_;
     std::string ck;
     std::string agree;
+    double bv = NAN, tri = NAN;  // FCL's own counters, where measured
 };
 
 std::vector<Row> g_rows;
@@ -457,6 +461,47 @@ CollAnswers fcl_collide(const fcl::BVHModel<BV>& m1, const fcl::BVHModel<BV>& m2
     return a;
 }
 
+// FCL's work counters: its high-level calls do not return them, so the traversal is re-run (untimed)
+// through the same internal entry points the high-level call uses, with statistics on.
+struct FclStats {
+    double bv = 0, tri = 0;
+};
+
+FclStats fcl_distance_stats_rss(const fcl::BVHModel<fcl::RSSd>& m1, const fcl::BVHModel<fcl::RSSd>& m2, Case& c) {
+    FclStats st;
+    const fcl::DistanceRequestd req(true);
+    for (size_t i = 0; i < c.size(); ++i) {
+        fcl::DistanceResultd res;
+        fcl::detail::MeshDistanceTraversalNodeRSS<double> node;
+        fcl::detail::initialize(node, m1, c.tfs[i].first, m2, c.tfs[i].second, req, res);
+        node.enable_statistics = true;
+        fcl::detail::distance(&node);
+        st.bv += node.num_bv_tests;
+        st.tri += node.num_leaf_tests;
+    }
+    st.bv /= static_cast<double>(c.size());
+    st.tri /= static_cast<double>(c.size());
+    return st;
+}
+
+FclStats fcl_collide_stats_obb(const fcl::BVHModel<fcl::OBBd>& m1, const fcl::BVHModel<fcl::OBBd>& m2, Case& c,
+                               bool all) {
+    FclStats st;
+    const fcl::CollisionRequestd req(all ? std::numeric_limits<size_t>::max() : 1, false);
+    for (size_t i = 0; i < c.size(); ++i) {
+        fcl::CollisionResultd res;
+        fcl::detail::MeshCollisionTraversalNodeOBB<double> node;
+        fcl::detail::initialize(node, m1, c.tfs[i].first, m2, c.tfs[i].second, req, res);
+        node.enable_statistics = true;
+        fcl::detail::collide(&node);
+        st.bv += node.num_bv_tests;
+        st.tri += node.num_leaf_tests;
+    }
+    st.bv /= static_cast<double>(c.size());
+    st.tri /= static_cast<double>(c.size());
+    return st;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Comparing answers, and refereeing disagreements by brute force
 
@@ -553,6 +598,11 @@ void add_variant(Row& row, const std::string& variant, const std::vector<double>
     }
 }
 
+void set_stats(const FclStats& st) {
+    g_variants.back().bv = st.bv;
+    g_variants.back().tri = st.tri;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Query runners shared by the workloads
 
@@ -571,6 +621,7 @@ void run_distance(Case& c, const std::string& workload, const Options& o, DistAn
     if (!o.ours_only) {
         auto rss = fcl_distance(*c.fcl1.rss, *c.fcl2.rss, c, o.reps);
         add_variant(row, "RSS", rss.time, fmt("sum d = %.12f", rss.sum()), compare_distances(c, query, "FCL-RSS", ours, rss));
+        set_stats(fcl_distance_stats_rss(*c.fcl1.rss, *c.fcl2.rss, c));
         auto obbrss = fcl_distance(*c.fcl1.obbrss, *c.fcl2.obbrss, c, o.reps);
         add_variant(row, "OBBRSS", obbrss.time, fmt("sum d = %.12f", obbrss.sum()),
                     compare_distances(c, query, "FCL-OBBRSS", ours, obbrss));
@@ -634,6 +685,7 @@ void run_collide(Case& c, const std::string& workload, const Options& o, bool al
             add_variant(row, v, f.time, ck(f), agree);
         };
         run(*c.fcl1.obb, *c.fcl2.obb, "OBB");
+        set_stats(fcl_collide_stats_obb(*c.fcl1.obb, *c.fcl2.obb, c, all));
         run(*c.fcl1.obbrss, *c.fcl2.obbrss, "OBBRSS");
         if (o.fcl_rss_collide) run(*c.fcl1.rss, *c.fcl2.rss, "RSS");
     }
@@ -664,7 +716,21 @@ void workload_spheres(const Options& o) {
         }
         g_notes.push_back(line);
     }
-    g_notes.push_back(fmt("spheres: %zu triangles per sphere", sphere.size()));
+    // The generator's fingerprint, which examples/bvtt_efficiency.rs prints too: the sum of every
+    // pose entry (R1, T1, R2, T2 per pose, in order) and then of every vertex coordinate.
+    double fingerprint = 0.0;
+    for (const auto& p : sp) {
+        for (double x : p.p1.R) fingerprint += x;
+        for (double x : p.p1.T) fingerprint += x;
+        for (double x : p.p2.R) fingerprint += x;
+        for (double x : p.p2.T) fingerprint += x;
+    }
+    for (const auto& t : sphere)
+        for (double x : t) fingerprint += x;
+    uint64_t bits = 0;
+    std::memcpy(&bits, &fingerprint, sizeof bits);
+    g_notes.push_back(fmt("spheres: %zu triangles per sphere; generator fingerprint %.17g (bits %016" PRIx64 ")",
+                          sphere.size(), fingerprint, bits));
 }
 
 void workload_shells(const Options& all) {
@@ -856,6 +922,7 @@ void workload_coherent(const Options& o) {
         auto rss = fcl_distance(*c.fcl1.rss, *c.fcl2.rss, c, o.reps);
         add_variant(cached, "RSS", rss.time, fmt("sum d = %.12f", rss.sum()),
                     compare_distances(c, "coherent", "FCL-RSS", a, rss));
+        set_stats(fcl_distance_stats_rss(*c.fcl1.rss, *c.fcl2.rss, c));
         auto obbrss = fcl_distance(*c.fcl1.obbrss, *c.fcl2.obbrss, c, o.reps);
         add_variant(cached, "OBBRSS", obbrss.time, fmt("sum d = %.12f", obbrss.sum()),
                     compare_distances(c, "coherent", "FCL-OBBRSS", a, obbrss));
@@ -1018,11 +1085,13 @@ void report(const Options& o) {
         if (!r.note.empty()) std::printf("\nNote (%s / %s): %s", r.workload.c_str(), r.query.c_str(), r.note.c_str());
     std::printf("\n");
     if (!g_variants.empty()) {
-        std::printf("\n## Every FCL BV type\n\n| workload | query | FCL BV | median (us) | mean (us) | checksum | agrees "
-                    "with ours |\n|---|---|---|---:|---:|---|---|\n");
+        std::printf("\n## Every FCL BV type\n\n| workload | query | FCL BV | median (us) | mean (us) | FCL BV tests/q | "
+                    "FCL tri tests/q | checksum | agrees with ours |\n|---|---|---|---:|---:|---:|---:|---|---|\n");
+        auto num = [](double x) { return std::isnan(x) ? std::string("-") : fmt("%.0f", x); };
         for (const auto& v : g_variants)
-            std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", v.workload.c_str(), v.query.c_str(), v.variant.c_str(),
-                        us(v.med).c_str(), us(v.mean_).c_str(), v.ck.c_str(), v.agree.c_str());
+            std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", v.workload.c_str(), v.query.c_str(),
+                        v.variant.c_str(), us(v.med).c_str(), us(v.mean_).c_str(), num(v.bv).c_str(),
+                        num(v.tri).c_str(), v.ck.c_str(), v.agree.c_str());
     }
     if (!g_build.empty()) {
         std::printf("\n## Build\n\n| triangles | library | build (ms) | bytes/tri (reported/estimated) | bytes/tri "

@@ -106,24 +106,29 @@ fn uv_sphere(radius: f64, nlat: i32, nlon: i32) -> Vec<Tri> {
     m
 }
 
-/// Workload 1's poses, in order: (gap, pose of sphere 1, pose of sphere 2).
-fn spheres_poses(per_gap: usize) -> Vec<(f64, Pose, Pose)> {
+/// Workload 1's poses, in order: (gap, pose of sphere 1, pose of sphere 2), and the running sum of
+/// their entries (R1, T1, R2, T2 per pose) for the generator's fingerprint.
+fn spheres_poses(per_gap: usize) -> (Vec<(f64, Pose, Pose)>, f64) {
     let mut rng = Rng(1);
     let mut out = Vec::new();
+    let mut sum = 0.0;
     for gap in [0.001, 0.01, 0.1, 1.0] {
         for _ in 0..per_gap {
             let r1 = random_rotation(&mut rng);
             let r2 = random_rotation(&mut rng);
             let dir = random_direction(&mut rng);
             let c = 2.0 + gap;
-            out.push((
-                gap,
-                Pose::new(r1, [0.0; 3]),
-                Pose::new(r2, [dir[0] * c, dir[1] * c, dir[2] * c]),
-            ));
+            let t2 = [dir[0] * c, dir[1] * c, dir[2] * c];
+            for x in r1.iter().flatten().chain(&[0.0; 3]) {
+                sum += x;
+            }
+            for x in r2.iter().flatten().chain(&t2) {
+                sum += x;
+            }
+            out.push((gap, Pose::new(r1, [0.0; 3]), Pose::new(r2, t2)));
         }
     }
-    out
+    (out, sum)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -154,15 +159,24 @@ fn main() {
         }
     }
     let mesh = uv_sphere(1.0, 101, 200);
+    let (poses, pose_sum) = spheres_poses(per_gap);
+    // The generator's fingerprint, as pqp_bench prints it: every pose entry, then every coordinate.
+    let mut fingerprint = pose_sum;
+    for (a, b, c, _) in &mesh {
+        for x in a.iter().chain(b).chain(c) {
+            fingerprint += x;
+        }
+    }
+    println!(
+        "workload 1: two UV spheres of {} triangles, {} poses; generator fingerprint {:.17e} (bits {:016x})",
+        mesh.len(),
+        poses.len(),
+        fingerprint,
+        fingerprint.to_bits()
+    );
     let s1 = Model::from_triangles(mesh.iter().copied()).expect("sphere builds");
     let s2 = Model::from_triangles(mesh.iter().copied()).expect("sphere builds");
-    let poses = spheres_poses(per_gap);
 
-    println!(
-        "workload 1: two UV spheres of {} triangles, {} poses",
-        mesh.len(),
-        poses.len()
-    );
     println!(
         "| gap | poses | BV tests/q | minimal BVTT nodes/q | minimal bound tests/q | \
          efficiency (BV tests / minimal nodes) | BV tests / minimal bound tests | \
