@@ -6,6 +6,7 @@
 //! overlap volumes answer whether they may intersect.
 
 mod obb;
+mod rect_distance;
 mod rss;
 
 pub use obb::Obb;

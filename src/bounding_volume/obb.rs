@@ -12,23 +12,111 @@ pub struct Obb {
     pub half: Vec3,
 }
 
+/// Rounding allowance of the separation test, relative to the magnitudes that enter it. It also
+/// keeps near-parallel edge pairs, whose cross-product axis is nearly zero and all of whose terms are
+/// rounding noise, from ever separating overlapping boxes.
+const OVERLAP_SLACK: f64 = 64.0 * f64::EPSILON;
+
+impl Obb {
+    /// `p` in box coordinates (relative to the centre).
+    #[inline]
+    fn local(&self, p: &Vec3) -> Vec3 {
+        self.axes.tr_mul(&(p - self.center))
+    }
+}
+
 impl BoundingVolume for Obb {
     fn fit(axes: &Mat3, points: &[Vec3]) -> Self {
-        let _ = (axes, points);
-        todo!("bounding volume helper")
+        let Some(first) = points.first() else {
+            // The builder never asks for this; an empty box at the origin rather than NaNs.
+            return Obb {
+                axes: *axes,
+                center: Vec3::zeros(),
+                half: Vec3::zeros(),
+            };
+        };
+        let q = axes.tr_mul(first);
+        let (mut lo, mut hi) = (q, q);
+        for p in points {
+            let q = axes.tr_mul(p);
+            lo = lo.inf(&q);
+            hi = hi.sup(&q);
+        }
+        // Halve before adding: no overflow whatever the magnitudes.
+        let mid = lo * 0.5 + hi * 0.5;
+        let mut obb = Obb {
+            axes: *axes,
+            center: axes * mid,
+            half: (hi * 0.5 - lo * 0.5).sup(&Vec3::zeros()),
+        };
+        // Rounding of the centre may leave a point a few ulps out: take the extents up to the
+        // offsets exactly as `contains` measures them.
+        for p in points {
+            obb.half = obb.half.sup(&obb.local(p).abs());
+        }
+        obb
     }
+
     fn contains(&self, p: &Vec3, eps: f64) -> bool {
-        let _ = (p, eps);
-        todo!("bounding volume helper")
+        let q = self.local(p);
+        q.x.abs() <= self.half.x + eps
+            && q.y.abs() <= self.half.y + eps
+            && q.z.abs() <= self.half.z + eps
     }
+
     fn size(&self) -> f64 {
         self.half.norm() * 2.0
     }
 }
 
 impl OverlapVolume for Obb {
+    /// Separating axis test on the 15 candidate axes: the 3 face normals of each box and the 9 cross
+    /// products of an edge of each. Every test allows a rounding slack, so touching boxes overlap.
+    #[inline]
     fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
-        let _ = (a, b, rel);
-        todo!("bounding volume helper")
+        let (ha, hb) = (&a.half, &b.half);
+        // Work in a's box frame: b's axes are the columns of R = A^T rot B, its centre is t.
+        let m = a.axes.tr_mul(&rel.rot);
+        let t = m * b.center + a.axes.tr_mul(&(rel.trans - a.center));
+        let slack = OVERLAP_SLACK
+            * (a.center.abs().sum()
+                + b.center.abs().sum()
+                + rel.trans.abs().sum()
+                + ha.sum()
+                + hb.sum());
+
+        // a's face normals, one row of R at a time: most separated pairs go at the first.
+        let mut r = Mat3::zeros();
+        let mut ar = Mat3::zeros();
+        for i in 0..3 {
+            let row = m.row(i) * b.axes;
+            let arow = row.abs();
+            if t[i].abs() > ha[i] + arow.dot(&hb.transpose()) + slack {
+                return false;
+            }
+            r.set_row(i, &row);
+            ar.set_row(i, &arow);
+        }
+        // b's face normals.
+        for j in 0..3 {
+            let proj = r.column(j).dot(&t);
+            if proj.abs() > ar.column(j).dot(ha) + hb[j] + slack {
+                return false;
+            }
+        }
+        // Edge pairs: axis a_i x b_j. In a's frame its components are e_i x R.col(j); its products
+        // with b's axes are +-R[i][j'], with a's +-R[i'][j].
+        const NEXT: [(usize, usize); 3] = [(1, 2), (2, 0), (0, 1)];
+        for (i, &(i1, i2)) in NEXT.iter().enumerate() {
+            for (j, &(j1, j2)) in NEXT.iter().enumerate() {
+                let proj = t[i2] * r[(i1, j)] - t[i1] * r[(i2, j)];
+                let ra = ha[i1] * ar[(i2, j)] + ha[i2] * ar[(i1, j)];
+                let rb = hb[j1] * ar[(i, j2)] + hb[j2] * ar[(i, j1)];
+                if proj.abs() > ra + rb + slack {
+                    return false;
+                }
+            }
+        }
+        true
     }
 }

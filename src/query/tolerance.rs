@@ -97,7 +97,7 @@ pub fn tolerance_into(
     qsize: usize,
 ) -> Result<(), Error> {
     let start = Instant::now();
-    if !(tolerance >= 0.0) || qsize < 1 {
+    if tolerance.is_nan() || tolerance < 0.0 || qsize < 1 {
         return Err(Error::InvalidArgument);
     }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;

@@ -1,0 +1,181 @@
+//! Exact distance between two rectangles in space: the kernel of the swept-sphere volumes (a point
+//! swept sphere is a rectangle with both sides 0, a line swept sphere one with a side 0).
+//!
+//! Why it is exact: if two rectangles are disjoint, a closest pair can be taken with one of its points
+//! on an edge (were both interior, the pair could slide in the common parallel planes until one
+//! reached an edge); if they meet, the meeting set is convex and reaches an edge of one of them. So the
+//! distance is the least of the eight edge-to-other-rectangle distances.
+//!
+//! Each of those is a one-dimensional convex problem: along an edge `p + t d`, the squared distance to
+//! an axis-aligned rectangle is a C1 convex piecewise quadratic in `t`, whose derivative is
+//! `(x(t) - clamp(x(t))) . d`, piecewise linear with knots where the edge crosses the lines bounding
+//! the rectangle. The minimum is at an end, or where that derivative changes sign, found exactly
+//! by bracketing between knots and interpolating linearly.
+//!
+//! Most pairs never get there: a corner and its nearest point on the other rectangle are a closest
+//! pair when each is the other's nearest point (a certificate checked with two dot products), which
+//! settles every configuration whose closest points include a corner. Only edge-edge configurations
+//! go through the edges, and an edge is looked at only if a bound from its ends' offsets leaves it
+//! room to beat the best corner.
+
+use crate::math::{Mat3, Vec3};
+
+/// Distance between two rectangles.
+///
+/// Rectangle A is `[0, la[0]] x [0, la[1]] x {0}` in its own frame. Rectangle B is
+/// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
+/// columns, the third being its normal) and `t` its corner, both in A's frame. Sides must be `>= 0`.
+#[inline]
+pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f64 {
+    // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
+    let u: Vec3 = r.column(0) * lb[0];
+    let v: Vec3 = r.column(1) * lb[1];
+    let qb = [*t, t + u, t + v, t + u + v];
+    let rb = [
+        offset(&qb[0], la),
+        offset(&qb[1], la),
+        offset(&qb[2], la),
+        offset(&qb[3], la),
+    ];
+    let (ib, db) = nearest(&rb);
+    // A corner and its nearest point on the other rectangle are a closest pair when that point is
+    // also nearest to the corner on the corner's own rectangle, that is when both of the corner's
+    // edges lead away from it: a plane through each, normal to the offset, then separates the
+    // rectangles. That settles every pair whose nearest points include a corner (a touching corner
+    // too: its offset is zero). The certificate is global, so b's nearest corner is tried before a
+    // is even placed in b's frame.
+    if leads_away(&rb[ib], ib, &u, &v) {
+        return db.sqrt();
+    }
+
+    // A in B's frame (x_B = r^T (x_A - t)): A's axes there are the rows of `r`.
+    let ta = -r.tr_mul(t);
+    let ua = Vec3::new(r[(0, 0)], r[(0, 1)], r[(0, 2)]) * la[0];
+    let va = Vec3::new(r[(1, 0)], r[(1, 1)], r[(1, 2)]) * la[1];
+    let pa = [ta, ta + ua, ta + va, ta + ua + va];
+    let ra = [
+        offset(&pa[0], lb),
+        offset(&pa[1], lb),
+        offset(&pa[2], lb),
+        offset(&pa[3], lb),
+    ];
+    let (ia, da) = nearest(&ra);
+    if da < db && leads_away(&ra[ia], ia, &ua, &va) {
+        return da.sqrt();
+    }
+    let mut best = least(db, da);
+
+    // The edges of b against a, then those of a against b.
+    best = edge_min(&qb[0], &u, &rb[0], &rb[1], la, best);
+    best = edge_min(&qb[2], &u, &rb[2], &rb[3], la, best);
+    best = edge_min(&qb[0], &v, &rb[0], &rb[2], la, best);
+    best = edge_min(&qb[1], &v, &rb[1], &rb[3], la, best);
+    best = edge_min(&pa[0], &ua, &ra[0], &ra[1], lb, best);
+    best = edge_min(&pa[2], &ua, &ra[2], &ra[3], lb, best);
+    best = edge_min(&pa[0], &va, &ra[0], &ra[2], lb, best);
+    best = edge_min(&pa[1], &va, &ra[1], &ra[3], lb, best);
+    best.sqrt()
+}
+
+/// The smaller of two numbers (no NaN reaches here; cheaper than `f64::min`).
+#[inline(always)]
+fn least(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// `p` minus its nearest point on the rectangle `[0, l[0]] x [0, l[1]] x {0}`.
+#[inline(always)]
+fn offset(p: &Vec3, l: [f64; 2]) -> Vec3 {
+    // max/min rather than clamp: no panic whatever the input.
+    Vec3::new(
+        p.x - p.x.max(0.0).min(l[0]),
+        p.y - p.y.max(0.0).min(l[1]),
+        p.z,
+    )
+}
+
+/// Index and squared length of the shortest of four offsets.
+#[inline(always)]
+fn nearest(o: &[Vec3; 4]) -> (usize, f64) {
+    let n = [
+        o[0].norm_squared(),
+        o[1].norm_squared(),
+        o[2].norm_squared(),
+        o[3].norm_squared(),
+    ];
+    let (i01, n01) = if n[1] < n[0] { (1, n[1]) } else { (0, n[0]) };
+    let (i23, n23) = if n[3] < n[2] { (3, n[3]) } else { (2, n[2]) };
+    if n23 < n01 {
+        (i23, n23)
+    } else {
+        (i01, n01)
+    }
+}
+
+/// Whether both edges of a rectangle leaving its corner `i` (of `c`, `c + u`, `c + v`, `c + u + v`)
+/// go away from the point the corner's offset `o` points from.
+#[inline(always)]
+fn leads_away(o: &Vec3, i: usize, u: &Vec3, v: &Vec3) -> bool {
+    let (su, sv) = (o.dot(u), o.dot(v));
+    let along_u = if i & 1 == 0 { su >= 0.0 } else { su <= 0.0 };
+    let along_v = if i & 2 == 0 { sv >= 0.0 } else { sv <= 0.0 };
+    along_u && along_v
+}
+
+/// The least of `best` and the squared distance from the interior of the edge `p + s d` (`s` in
+/// `[0, 1]`) to the rectangle `[0, l[0]] x [0, l[1]] x {0}`; `o0`, `o1` are the offsets of its ends,
+/// whose distances are already in `best`.
+#[inline(always)]
+fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) -> f64 {
+    // Slope of the squared distance (halved) at the ends: the minimum is at an end unless it goes
+    // from negative to positive.
+    let g0 = o0.dot(d);
+    let g1 = o1.dot(d);
+    if g0 >= 0.0 || g1 <= 0.0 {
+        return best;
+    }
+    // Each coordinate's offset keeps its sign along the edge when both ends have it, and then never
+    // drops below the smaller end's: a lower bound for the whole edge.
+    let gap = |a: f64, b: f64| {
+        if (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0) {
+            a.abs().min(b.abs())
+        } else {
+            0.0
+        }
+    };
+    let (gx, gy, gz) = (gap(o0.x, o1.x), gap(o0.y, o1.y), gap(o0.z, o1.z));
+    if gx * gx + gy * gy + gz * gz >= best {
+        return best;
+    }
+    // Bracket the sign change of the slope between the knots nearest to it; the slope is linear
+    // between consecutive knots, and monotone overall, so a knot outside the current bracket never
+    // matters.
+    let (mut s_lo, mut g_lo, mut s_hi, mut g_hi) = (0.0, g0, 1.0, g1);
+    let mut knot = |s: f64| {
+        if s > s_lo && s < s_hi {
+            let g = offset(&(p + d * s), l).dot(d);
+            if g < 0.0 {
+                (s_lo, g_lo) = (s, g);
+            } else {
+                (s_hi, g_hi) = (s, g);
+            }
+        }
+    };
+    if d.x != 0.0 {
+        let inv = 1.0 / d.x;
+        knot(-p.x * inv);
+        knot((l[0] - p.x) * inv);
+    }
+    if d.y != 0.0 {
+        let inv = 1.0 / d.y;
+        knot(-p.y * inv);
+        knot((l[1] - p.y) * inv);
+    }
+    // g_lo < 0 <= g_hi, so the fraction is in [0, 1].
+    let s = s_lo + (s_hi - s_lo) * (-g_lo / (g_hi - g_lo));
+    least(best, offset(&(p + d * s), l).norm_squared())
+}
