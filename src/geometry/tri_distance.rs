@@ -1,8 +1,285 @@
+use super::point_triangle::{face_normal, FaceFrame};
+use super::predicates::{kernel_rescale, max_abs, pow2, PlaneFilter};
+use super::segment_segment::{length, point_on, recip, seg_seg};
+use super::tri_overlap::{intersect, Sides};
 use super::{ClosestPoints, Tri};
+use crate::math::Vec3;
 
 /// Distance between two triangles with a closest point on each (`p` on `a`, `q` on `b`). When
 /// they intersect or touch, the distance is 0 and `p == q` is a common point.
+///
+/// Contact is decided exactly (as [`tri_overlap`](super::tri_overlap), with which this function
+/// agrees: the distance is 0 exactly when the triangles share a point, barring separations below
+/// the rounding of the coordinates). Otherwise the closest pair is among the 9 edge pairs and the
+/// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
+/// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
-    let _ = (a, b);
-    todo!("geometry helper")
+    let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
+    if let Some(k) = kernel_rescale(m) {
+        // Huge or tiny coordinates: work at unit scale (exactly, by a power of two).
+        let (s, inv) = (pow2(k), pow2(-k));
+        let r = distance_core(&a.map(|v| v * s), &b.map(|v| v * s));
+        return ClosestPoints {
+            distance: r.distance * inv,
+            p: r.p * inv,
+            q: r.q * inv,
+        };
+    }
+    distance_core(a, b)
+}
+
+/// Which candidate is closest so far.
+#[derive(Clone, Copy)]
+enum Feature {
+    /// Edge `i` of `a` (from vertex `i` to `i + 1`) and edge `j` of `b`, at parameters `s`, `t`.
+    Edges(usize, usize, f64, f64),
+    /// Vertex `j` of `b` over the face of `a`, whose closest point is `b[j] - n * k`.
+    VertexOfB(usize, Vec3, f64),
+    /// Vertex `i` of `a` over the face of `b`, whose closest point is `a[i] - n * k`.
+    VertexOfA(usize, Vec3, f64),
+}
+
+fn distance_core(a: &Tri, b: &Tri) -> ClosestPoints {
+    let pa = PlaneFilter::new(&a[0], &a[1], &a[2]);
+    let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
+    // Either triangle strictly on one side of the other's plane is the common, cheap case; then
+    // the other side's values are needed only for distances, without error bounds.
+    let ob = Sides::eval(&pa, b);
+    let oa = if ob.separated() {
+        Sides::values(&pb, a)
+    } else {
+        let oa = Sides::eval(&pb, a);
+        if !oa.separated() {
+            if let Some(x) = intersect::<true>(a, b, oa, ob) {
+                return ClosestPoints {
+                    distance: 0.0,
+                    p: x,
+                    q: x,
+                };
+            }
+        }
+        oa
+    };
+    // Disjoint: a closest pair has a point on an edge of each, or a vertex of one whose
+    // projection falls inside the other's face.
+    let ea = [a[1] - a[0], a[2] - a[1], a[0] - a[2]];
+    let eb = [b[1] - b[0], b[2] - b[1], b[0] - b[2]];
+    let la = ea.map(|e| e.norm_squared());
+    let lb = eb.map(|e| e.norm_squared());
+    let fa = Face::new(a, &ea, &la, &pa.n, &ob.o, b);
+    let fb = Face::new(b, &eb, &lb, &pb.n, &oa.o, a);
+    // A triangle strictly on one side of the other's plane is at least as far from it as its
+    // vertex nearest the plane; if that vertex projects inside the face, this is the distance.
+    if let Some((d2, j, k)) = fa.nearest_vertex_if_one_side(a, &ea, b) {
+        let foot = b[j] - fa.n * k;
+        return vertex_face(d2, fa.n * k, foot, b[j]);
+    }
+    if let Some((d2, i, k)) = fb.nearest_vertex_if_one_side(b, &eb, a) {
+        let foot = a[i] - fb.n * k;
+        return vertex_face(d2, fb.n * k, a[i], foot);
+    }
+    let mut best = f64::INFINITY;
+    let mut feature = Feature::Edges(0, 0, 0.0, 0.0);
+    let mut gap = Vec3::zeros();
+    // An edge whose ends are strictly on one side of the other triangle's plane is at least as far
+    // from that triangle as the nearer end is from the plane.
+    let bound_a = fb.edge_bounds();
+    let bound_b = fa.edge_bounds();
+    let (ia, ib) = (la.map(recip), lb.map(recip));
+    // Try first the edges at each triangle's vertex nearest the other's plane, where the closest
+    // pair usually is: the separating-slab test below then ends the search early.
+    let order_a = edge_order(&oa.o);
+    let order_b = edge_order(&ob.o);
+    for i in order_a {
+        for j in order_b {
+            if bound_a[i].max(bound_b[j]) >= best {
+                continue;
+            }
+            let c = seg_seg(&a[i], &ea[i], la[i], ia[i], &b[j], &eb[j], lb[j], ib[j]);
+            if c.dist2 < best {
+                best = c.dist2;
+                feature = Feature::Edges(i, j, c.s, c.t);
+                gap = c.gap;
+                // The closest points P, Q of two edges already have every point of either edge on
+                // its own side of the slab between the planes through P and Q normal to the gap.
+                // If the third vertices are too, the slab separates the triangles: this pair is
+                // the answer.
+                let g = c.gap; // P - Q
+                let third_a = -ea[(i + 2) % 3]; // a[i + 2] - a[i]
+                let third_b = -eb[(j + 2) % 3];
+                if third_a.dot(&g) - c.s * ea[i].dot(&g) >= 0.0
+                    && third_b.dot(&g) - c.t * eb[j].dot(&g) <= 0.0
+                {
+                    return finish(a, b, &ea, &eb, Feature::Edges(i, j, c.s, c.t), c.gap, best);
+                }
+            }
+        }
+    }
+    // Vertices over faces, for what the edges left (no separating slab was found).
+    if let Some((d2, j, k)) = fa.nearest_vertex_over(a, &ea, b, best) {
+        best = d2;
+        feature = Feature::VertexOfB(j, fa.n, k);
+        gap = fa.n * k;
+    }
+    if let Some((d2, i, k)) = fb.nearest_vertex_over(b, &eb, a, best) {
+        best = d2;
+        feature = Feature::VertexOfA(i, fb.n, k);
+        gap = fb.n * k;
+    }
+    finish(a, b, &ea, &eb, feature, gap, best)
+}
+
+/// Edge indices starting with the two edges at the vertex of least `|o|`.
+#[inline]
+fn edge_order(o: &[f64; 3]) -> [usize; 3] {
+    let (a0, a1, a2) = (o[0].abs(), o[1].abs(), o[2].abs());
+    // Edge k joins vertices k and k + 1.
+    if a0 <= a1 && a0 <= a2 {
+        [0, 2, 1]
+    } else if a1 <= a2 {
+        [1, 0, 2]
+    } else {
+        [2, 1, 0]
+    }
+}
+
+/// The answer from the closest feature pair, its gap vector and squared distance.
+#[inline]
+fn finish(
+    a: &Tri,
+    b: &Tri,
+    ea: &[Vec3; 3],
+    eb: &[Vec3; 3],
+    feature: Feature,
+    gap: Vec3,
+    d2: f64,
+) -> ClosestPoints {
+    let (p, q) = match feature {
+        Feature::Edges(i, j, s, t) => (
+            point_on(&a[i], &a[(i + 1) % 3], &ea[i], s),
+            point_on(&b[j], &b[(j + 1) % 3], &eb[j], t),
+        ),
+        Feature::VertexOfB(j, n, k) => (b[j] - n * k, b[j]),
+        Feature::VertexOfA(i, n, k) => (a[i], a[i] - n * k),
+    };
+    let distance = length(&gap, d2);
+    // A separation below rounding: report the single point the contract promises for distance 0.
+    let q = if distance == 0.0 { p } else { q };
+    ClosestPoints { distance, p, q }
+}
+
+/// The answer for a vertex over a face: squared distance, gap `p - q`, and the points.
+#[inline]
+fn vertex_face(d2: f64, gap: Vec3, p: Vec3, q: Vec3) -> ClosestPoints {
+    let distance = length(&gap, d2);
+    let q = if distance == 0.0 { p } else { q };
+    ClosestPoints { distance, p, q }
+}
+
+/// The plane of a triangle `t` and the other triangle's vertices relative to it.
+struct Face {
+    /// `(t1 - t0) x (t2 - t0)`, accurate also for slivers; zero for a degenerate triangle.
+    n: Vec3,
+    nn: f64,
+    /// `n . (v - t0)` for the other triangle's vertices `v`.
+    o: [f64; 3],
+}
+
+impl Face {
+    /// From the float normal and orientations of the contact test (`n`, `o`); `e`, `l` are `t`'s
+    /// edge vectors and squared lengths.
+    #[inline]
+    fn new(t: &Tri, e: &[Vec3; 3], l: &[f64; 3], n: &Vec3, o: &[f64; 3], pts: &Tri) -> Face {
+        let nn = n.norm_squared();
+        if nn > 1e-6 * l[0] * l[2] {
+            return Face { n: *n, nn, o: *o };
+        }
+        // A sliver (or degenerate) face: the float normal may be tilted by rounding; redo it
+        // accurately. A truly degenerate face gets nn = 0 and is covered by its edges.
+        let n = face_normal(&e[0], &(-e[2]));
+        Face {
+            n,
+            nn: n.norm_squared(),
+            o: pts.map(|v| n.dot(&(v - t[0]))),
+        }
+    }
+
+    /// The vertex of `pts` nearest to the face among those whose projection falls inside it, if
+    /// nearer than `best` (squared): `(squared distance, index, k)`, its foot being
+    /// `pts[i] - n * k`.
+    #[inline]
+    fn nearest_vertex_over(
+        &self,
+        t: &Tri,
+        e: &[Vec3; 3],
+        pts: &Tri,
+        best: f64,
+    ) -> Option<(f64, usize, f64)> {
+        if self.nn == 0.0 {
+            return None;
+        }
+        let mut frame = None;
+        let mut found = None;
+        let mut best = best;
+        for (i, (o, v)) in self.o.iter().zip(pts).enumerate() {
+            // `o / nn` before the product: o^2 could underflow for tiny triangles.
+            let d2 = o * (o / self.nn);
+            if d2 < best {
+                let f =
+                    frame.get_or_insert_with(|| FaceFrame::new(&e[0], &(-e[2]), &self.n, self.nn));
+                if let Some(h) = f.projection(&(v - t[0])) {
+                    let k = h / self.nn;
+                    best = h * k;
+                    found = Some((best, i, k));
+                }
+            }
+        }
+        found
+    }
+
+    /// When all of `pts` are strictly on one side and the nearest to the plane projects inside the
+    /// face, `(squared distance, index, k)` as in [`Face::nearest_vertex_over`].
+    #[inline]
+    fn nearest_vertex_if_one_side(
+        &self,
+        t: &Tri,
+        e: &[Vec3; 3],
+        pts: &Tri,
+    ) -> Option<(f64, usize, f64)> {
+        let [o0, o1, o2] = self.o;
+        let one_side = o0 > 0.0 && o1 > 0.0 && o2 > 0.0 || o0 < 0.0 && o1 < 0.0 && o2 < 0.0;
+        if !one_side || self.nn == 0.0 {
+            return None;
+        }
+        let (a0, a1, a2) = (o0.abs(), o1.abs(), o2.abs());
+        let i = if a0 <= a1 && a0 <= a2 {
+            0
+        } else if a1 <= a2 {
+            1
+        } else {
+            2
+        };
+        let h = FaceFrame::new(&e[0], &(-e[2]), &self.n, self.nn).projection(&(pts[i] - t[0]))?;
+        let k = h / self.nn;
+        Some((h * k, i, k))
+    }
+
+    /// For each edge `(j, j + 1)` of the other triangle, a lower bound on its squared distance to
+    /// this triangle: the squared distance of its nearer end to the plane when both ends are
+    /// strictly on one side, else 0.
+    #[inline]
+    fn edge_bounds(&self) -> [f64; 3] {
+        let mut out = [0.0; 3];
+        if self.nn == 0.0 {
+            return out;
+        }
+        for (j, b) in out.iter_mut().enumerate() {
+            let (x, y) = (self.o[j], self.o[(j + 1) % 3]);
+            if x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0 {
+                let m = x.abs().min(y.abs());
+                *b = m * (m / self.nn);
+            }
+        }
+        out
+    }
 }
