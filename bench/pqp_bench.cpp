@@ -5,7 +5,8 @@
 // Workloads: spheres shells bunny-collide bunny-distance coherent build threads (default: all).
 // --quick shrinks every workload (for valgrind); --ours-only skips FCL (for profiling ours).
 // --fcl-rss-collide also times FCL's collision on BVHModel<RSS> (very slow); --cube F sets the side
-// of the bunny workloads' offset cube in bunny radii (default 2).
+// of the bunny workloads' offset cube in bunny radii (default 2); --extra-qsize N adds a workload-1
+// row for our distance query with queue size N (the default is PQP's 2).
 //
 // Timing: every query is timed on its own with std::chrono::steady_clock; the pose set is run
 // `reps` times (default 3) and each pose keeps its fastest run (the machine is shared, and the
@@ -70,6 +71,7 @@ struct Options {
     bool verify = true;
     int threads = 0;
     bool fcl_rss_collide = false;  // FCL's RSS collision is ~500x slower than its OBB: off by default
+    int extra_qsize = 0;  // if > 0, workload 1 also runs ours with this queue size
     double cube = 2.0;  // side of the bunny workloads' offset cube, in bunny radii
     bool want(const std::string& w) const { return only.empty() || only.count(w) != 0; }
 };
@@ -311,7 +313,7 @@ struct DistAnswers {
 
 // ---- ours
 
-DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err) {
+DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err, int qsize = 2) {
     DistAnswers a;
     a.d.resize(c.size());
     pqp_distance_result* r = pqp_distance_result_create();
@@ -321,7 +323,7 @@ DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err) {
         [&](size_t i) {
             const auto& p = c.poses[i];
             rc |= pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(),
-                               p.second.T.data(), c.ours2.m, rel_err, abs_err, 2);
+                               p.second.T.data(), c.ours2.m, rel_err, abs_err, qsize);
         },
         [&](size_t i) {
             a.d[i] = pqp_distance_result_distance(r);
@@ -703,6 +705,19 @@ void workload_spheres(const Options& o) {
     Case c("spheres", sphere, sphere, poses, !o.ours_only);
     DistAnswers ours;
     run_distance(c, "1 spheres-distance", o, &ours);
+    if (o.extra_qsize > 0) {
+        Row row = g_rows.back();
+        row.query = fmt("distance, ours with qsize %d", o.extra_qsize);
+        const DistAnswers q = ours_distance(c, o.reps, 0.0, 0.0, o.extra_qsize);
+        row.ours_med = median(q.time);
+        row.ours_mean = mean(q.time);
+        row.bv = q.bv;
+        row.tri = q.tri;
+        row.ours_ck = fmt("sum d = %.12f", q.sum());
+        row.agree = compare_distances(c, row.query, "ours-qsize-2", q, ours) == "yes" ? "= qsize 2 answers" : "NO";
+        row.note = "FCL's row is its usual (qsize 2) query";
+        g_rows.push_back(row);
+    }
     // Per-gap medians (ours, and FCL-RSS if run).
     DistAnswers fcl;
     if (!o.ours_only) fcl = fcl_distance(*c.fcl1.rss, *c.fcl2.rss, c, o.reps);
@@ -1137,6 +1152,8 @@ Options parse(int argc, char** argv) {
             o.threads = std::atoi(value().c_str());
         } else if (a == "--fcl-rss-collide") {
             o.fcl_rss_collide = true;
+        } else if (a == "--extra-qsize") {
+            o.extra_qsize = std::atoi(value().c_str());
         } else if (a == "--cube") {
             o.cube = std::atof(value().c_str());
         } else if (a == "--quick") {

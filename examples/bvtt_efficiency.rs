@@ -7,8 +7,11 @@
 //! workload-1 checksum: that confirms both ran the same workload.
 //!
 //! ```text
-//! cargo run --release --example bvtt_efficiency [-- --per-gap N]
+//! cargo run --release --example bvtt_efficiency [-- --per-gap N] [--qsize N]
 //! ```
+//!
+//! `--qsize` sets the query's queue size (default 2, PQP's default: depth-first, nearer pair first;
+//! larger values search best-first), to see how the search order changes the work.
 
 use pqp::diagnostics::minimal_bvtt;
 use pqp::{distance_into, DistanceOptions, DistanceResult, Model, Pose};
@@ -143,6 +146,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let mut per_gap = 100;
+    let mut qsize = 2;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -152,8 +156,9 @@ fn main() {
                     .and_then(|v| v.parse().ok())
                     .expect("--per-gap N")
             }
+            "--qsize" => qsize = args.next().and_then(|v| v.parse().ok()).expect("--qsize N"),
             _ => {
-                eprintln!("usage: bvtt_efficiency [--per-gap N]");
+                eprintln!("usage: bvtt_efficiency [--per-gap N] [--qsize N]");
                 std::process::exit(2);
             }
         }
@@ -191,8 +196,11 @@ fn main() {
         let mut acc = [0.0f64; 5]; // bv, nodes, bound tests, tri, leaves
         let mut ratios = Vec::new();
         for (_, p1, p2) in chunk {
-            distance_into(&mut result, &s1, p1, &s2, p2, &DistanceOptions::exact())
-                .expect("query runs");
+            let opts = DistanceOptions {
+                qsize,
+                ..DistanceOptions::exact()
+            };
+            distance_into(&mut result, &s1, p1, &s2, p2, &opts).expect("query runs");
             sum_d += result.distance;
             let m = minimal_bvtt(&s1, p1, &s2, p2, result.distance).expect("walk runs");
             let row = [
