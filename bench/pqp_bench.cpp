@@ -466,13 +466,16 @@ CollAnswers fcl_collide(const fcl::BVHModel<BV>& m1, const fcl::BVHModel<BV>& m2
 // FCL's work counters: its high-level calls do not return them, so the traversal is re-run (untimed)
 // through the same internal entry points the high-level call uses, with statistics on.
 struct FclStats {
-    double bv = 0, tri = 0;
+    double bv = 0, tri = 0, sum_d = 0;
 };
 
-FclStats fcl_distance_stats_rss(const fcl::BVHModel<fcl::RSSd>& m1, const fcl::BVHModel<fcl::RSSd>& m2, Case& c) {
+FclStats fcl_distance_stats_rss(const fcl::BVHModel<fcl::RSSd>& m1, const fcl::BVHModel<fcl::RSSd>& m2, Case& c,
+                                double rel_err = 0.0, size_t limit = std::numeric_limits<size_t>::max()) {
     FclStats st;
-    const fcl::DistanceRequestd req(true);
-    for (size_t i = 0; i < c.size(); ++i) {
+    fcl::DistanceRequestd req(true);
+    req.rel_err = rel_err;
+    const size_t n = std::min(limit, c.size());
+    for (size_t i = 0; i < n; ++i) {
         fcl::DistanceResultd res;
         fcl::detail::MeshDistanceTraversalNodeRSS<double> node;
         fcl::detail::initialize(node, m1, c.tfs[i].first, m2, c.tfs[i].second, req, res);
@@ -480,9 +483,10 @@ FclStats fcl_distance_stats_rss(const fcl::BVHModel<fcl::RSSd>& m1, const fcl::B
         fcl::detail::distance(&node);
         st.bv += node.num_bv_tests;
         st.tri += node.num_leaf_tests;
+        st.sum_d += res.min_distance;
     }
-    st.bv /= static_cast<double>(c.size());
-    st.tri /= static_cast<double>(c.size());
+    st.bv /= static_cast<double>(n);
+    st.tri /= static_cast<double>(n);
     return st;
 }
 
@@ -784,23 +788,27 @@ void workload_shells(const Options& all) {
         // FCL's exact time is its number for this row; it is also run with rel_err = 0.1 to show
         // the bound changes nothing.
         const std::string agree = bad == 0 ? "bound holds" : fmt("NO: bound broken on %d poses", bad);
+        std::vector<VariantRow> exact_rows;
         for (const auto& v : g_variants)
-            if (v.workload == "2 shells" && v.query == "distance exact") {
-                g_variants.push_back({row.workload, row.query, v.variant + " (exact)", v.med, v.mean_, v.ck, agree});
-                if (std::isnan(row.fcl_med) || v.med < row.fcl_med) {
-                    row.fcl_med = v.med;
-                    row.fcl_mean = v.mean_;
-                    row.fcl_variant = v.variant + " exact";
-                    row.fcl_ck = v.ck;
-                    row.agree = agree;
-                }
+            if (v.workload == "2 shells" && v.query == "distance exact") exact_rows.push_back(v);
+        for (const auto& v : exact_rows) {
+            g_variants.push_back({row.workload, row.query, v.variant + " (exact)", v.med, v.mean_, v.ck, agree});
+            if (std::isnan(row.fcl_med) || v.med < row.fcl_med) {
+                row.fcl_med = v.med;
+                row.fcl_mean = v.mean_;
+                row.fcl_variant = v.variant + " exact";
+                row.fcl_ck = v.ck;
+                row.agree = agree;
             }
-        auto f = fcl_distance(*c.fcl1.rss, *c.fcl2.rss, c, o.reps, 0.1);
-        g_variants.push_back({row.workload, row.query, "RSS, rel_err=0.1 requested", median(f.time), mean(f.time),
-                              fmt("sum d = %.12f", f.sum()),
-                              compare_distances(c, "rel_err-0.1-fcl", "FCL-RSS(rel_err 0.1)", exact, f) == "yes"
-                                  ? "= exact answers"
-                                  : "differs from exact"});
+        }
+        // FCL with rel_err = 0.1 requested, on the first poses: same answers and the same work
+        // (its counters) as its exact query, which shows the bound is ignored without timing noise.
+        const size_t few = std::min<size_t>(c.size(), 10);
+        const FclStats st_exact = fcl_distance_stats_rss(*c.fcl1.rss, *c.fcl2.rss, c, 0.0, few);
+        const FclStats st_rel = fcl_distance_stats_rss(*c.fcl1.rss, *c.fcl2.rss, c, 0.1, few);
+        g_notes.push_back(fmt("shells: FCL-RSS on the first %zu poses: %.0f BV tests/q exact, %.0f with rel_err 0.1 "
+                              "requested; sum d %.12f and %.12f",
+                              few, st_exact.bv, st_rel.bv, st_exact.sum_d, st_rel.sum_d));
     } else {
         row.agree = bad == 0 ? "bound holds" : fmt("NO: bound broken on %d poses", bad);
     }
