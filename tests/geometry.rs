@@ -69,8 +69,9 @@ fn solve(mut m: [[f64; 3]; 3], mut r: [f64; 3], k: usize) -> Option<[f64; 3]> {
         r.swap(c, p);
         for i in c + 1..k {
             let f = m[i][c] / m[c][c];
-            for j in c..k {
-                m[i][j] -= f * m[c][j];
+            let pivot_row = m[c];
+            for (x, &y) in m[i][c..k].iter_mut().zip(&pivot_row[c..k]) {
+                *x -= f * y;
             }
             r[i] -= f * r[c];
         }

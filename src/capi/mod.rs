@@ -1,1 +1,281 @@
-//! The C ABI (see include/pqp/pqp.h).
+//! The C ABI: `extern "C"` functions over the safe Rust API, declared in `include/pqp/pqp.h`
+//! (generated from this module by cbindgen in `build.rs`; the doc comments here become the header's).
+//!
+//! This layer is thin: it checks pointers and arguments, calls [`crate::Model`],
+//! [`crate::collide_into`], [`crate::distance_into`] and [`crate::tolerance_into`], and converts the
+//! answers. Everything that decides an answer lives in the Rust core.
+//!
+//! Rules every exported function follows:
+//! - Its whole body runs inside [`boundary`], the one place where panics are caught: a panic becomes
+//!   `PQP_ERR_INTERNAL` (or a documented fallback value for getters) and never unwinds into C.
+//! - A NULL required pointer returns `PQP_ERR_NULL_POINTER` (getters return their fallback value).
+//! - Handles are `Box` pointers: [`into_handle`] makes one and [`free_handle`] ends one; nothing else
+//!   creates or frees them. The C types are opaque (cbindgen declares a Rust struct without
+//!   `#[repr(C)]` as an incomplete struct).
+//! - Nothing prints: a panic's message is swallowed by a panic hook that stays silent while a C ABI
+//!   call is running on the thread (see [`install_quiet_panic_hook`]).
+//!
+//! Pointer requirements are the C convention and are stated once in the header's preamble: a
+//! non-NULL pointer must point to what the documentation says (a live handle from the matching
+//! `create`, or the stated number of doubles). Passing anything else is undefined behaviour the
+//! library cannot detect.
+
+// The exported functions take raw pointers from C; their safety contract is documented for C
+// readers in the header preamble rather than in a `# Safety` section per function.
+#![allow(clippy::missing_safety_doc)]
+
+// In the order the header lists them (cbindgen follows the module order).
+mod model;
+// Collision.
+mod collide;
+// Separation distance.
+mod distance;
+// Tolerance.
+mod tolerance;
+// Error texts and version.
+mod misc;
+
+pub use collide::*;
+pub use distance::*;
+pub use misc::*;
+pub use model::*;
+pub use tolerance::*;
+
+use crate::error::Error;
+use crate::math::Pose;
+use crate::query::Stats;
+use std::cell::Cell;
+use std::ffi::c_int;
+use std::panic::{self, AssertUnwindSafe};
+use std::sync::Once;
+
+/// Success.
+pub const PQP_OK: c_int = 0;
+/// A model's storage could not be allocated.
+pub const PQP_ERR_MODEL_OUT_OF_MEMORY: c_int = -1;
+/// A query's working storage could not be allocated.
+pub const PQP_ERR_OUT_OF_MEMORY: c_int = -2;
+/// A query was given a model that is not built (pqp_model_end not called, or it failed).
+pub const PQP_ERR_UNPROCESSED_MODEL: c_int = -3;
+/// Model build calls out of order (see pqp_model_begin, pqp_model_add_tri, pqp_model_end).
+pub const PQP_ERR_BUILD_OUT_OF_SEQUENCE: c_int = -4;
+/// pqp_model_end on a model with no triangles.
+pub const PQP_ERR_BUILD_EMPTY_MODEL: c_int = -5;
+/// A vertex coordinate is NaN, infinite or larger in magnitude than 1e150; the triangle is refused
+/// and the model stays usable.
+pub const PQP_ERR_NONFINITE_COORDINATE: c_int = -6;
+/// A rotation or translation entry is NaN, infinite or larger in magnitude than 1e150.
+pub const PQP_ERR_NONFINITE_POSE: c_int = -7;
+/// An argument is out of its domain: unknown contact flag, negative or NaN rel_err, abs_err or
+/// tolerance, qsize < 1.
+pub const PQP_ERR_INVALID_ARGUMENT: c_int = -8;
+/// A required pointer was NULL.
+pub const PQP_ERR_NULL_POINTER: c_int = -9;
+/// The library hit an internal fault (a bug); the call had no effect except that a query's result
+/// object is reset to its freshly created state.
+pub const PQP_ERR_INTERNAL: c_int = -10;
+/// Collision flag: report every colliding triangle pair.
+pub const PQP_ALL_CONTACTS: c_int = 1;
+/// Collision flag: stop at the first colliding triangle pair found.
+pub const PQP_FIRST_CONTACT: c_int = 2;
+
+/// The code the C ABI returns for `r`.
+pub(crate) fn code(r: Result<(), Error>) -> c_int {
+    match r {
+        Ok(()) => PQP_OK,
+        Err(e) => e.code(),
+    }
+}
+
+thread_local! {
+    /// Whether this thread is inside a C ABI call (the quiet panic hook stays silent then).
+    static IN_C_CALL: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Makes panics raised inside C ABI calls silent, once per process: the library must never print.
+///
+/// The hook installed wraps the one in place before, which still reports panics raised outside C
+/// ABI calls (for instance in a Rust program that links this crate).
+fn install_quiet_panic_hook() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // Replacing the hook is refused while this thread panics; then stay with the old one.
+        if std::thread::panicking() {
+            return;
+        }
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            if !IN_C_CALL.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+}
+
+/// Runs the body of an exported function: the one boundary every `extern "C"` function goes through.
+///
+/// Returns what `body` returns. If `body` panics, the panic is caught (it must not unwind into C),
+/// `recover` is run to put any state the caller can see back into a defined shape, and `fallback` is
+/// returned: `PQP_ERR_INTERNAL` for functions returning a status code, the documented NULL-input
+/// value for getters.
+pub(crate) fn boundary<T>(fallback: T, recover: impl FnOnce(), body: impl FnOnce() -> T) -> T {
+    install_quiet_panic_hook();
+    let outer = IN_C_CALL.with(|f| f.replace(true));
+    let answer = match panic::catch_unwind(AssertUnwindSafe(body)) {
+        Ok(v) => v,
+        Err(payload) => {
+            drop_payload(payload);
+            if let Err(again) = panic::catch_unwind(AssertUnwindSafe(recover)) {
+                drop_payload(again);
+            }
+            fallback
+        }
+    };
+    IN_C_CALL.with(|f| f.set(outer));
+    answer
+}
+
+/// Frees a caught panic's payload. Dropping it may itself panic (a payload with a panicking `Drop`);
+/// that second payload is leaked rather than risk unwinding into C.
+fn drop_payload(payload: Box<dyn std::any::Any + Send>) {
+    if let Err(again) = panic::catch_unwind(AssertUnwindSafe(move || drop(payload))) {
+        std::mem::forget(again);
+    }
+}
+
+/// [`boundary`] for functions returning a status code.
+pub(crate) fn status(body: impl FnOnce() -> Result<(), Error>) -> c_int {
+    boundary(PQP_ERR_INTERNAL, || {}, || code(body()))
+}
+
+/// Moves `value` to the heap and returns the handle C holds: the only place handles are made.
+/// Handles are `Box` allocations (freed by [`free_handle`] through `Box::from_raw`); they are
+/// allocated by hand so that an allocation failure returns NULL instead of aborting the process.
+pub(crate) fn into_handle<T>(value: T) -> *mut T {
+    let layout = std::alloc::Layout::new::<T>();
+    // Handles are never zero-sized, for which `alloc` would be undefined.
+    const { assert!(std::mem::size_of::<T>() > 0) };
+    // SAFETY: the layout has a non-zero size.
+    let p = unsafe { std::alloc::alloc(layout) }.cast::<T>();
+    if !p.is_null() {
+        // SAFETY: `p` is fresh, writable and aligned for `T`.
+        unsafe { p.write(value) };
+    }
+    p
+}
+
+/// Frees a handle made by [`into_handle`]; NULL is accepted and ignored.
+///
+/// # Safety
+/// `h` is NULL or a pointer returned by `into_handle::<T>` not freed before.
+pub(crate) unsafe fn free_handle<T>(h: *mut T) {
+    if !h.is_null() {
+        drop(Box::from_raw(h));
+    }
+}
+
+/// The object behind a handle, or `Err(NullPointer)`.
+///
+/// # Safety
+/// `h` is NULL or a live handle (the caller's contract, see the header).
+pub(crate) unsafe fn deref<'a, T>(h: *const T) -> Result<&'a T, Error> {
+    h.as_ref().ok_or(Error::NullPointer)
+}
+
+/// The object behind a handle for modification, or `Err(NullPointer)`.
+///
+/// # Safety
+/// As [`deref`], and no other reference to the object is alive (the caller's contract).
+pub(crate) unsafe fn deref_mut<'a, T>(h: *mut T) -> Result<&'a mut T, Error> {
+    h.as_mut().ok_or(Error::NullPointer)
+}
+
+/// Copies `N` doubles from C, or `Err(NullPointer)`.
+///
+/// # Safety
+/// `p` is NULL or points to `N` readable doubles.
+pub(crate) unsafe fn read_doubles<const N: usize>(p: *const f64) -> Result<[f64; N], Error> {
+    if p.is_null() {
+        return Err(Error::NullPointer);
+    }
+    // C arrays of double are aligned, but nothing is lost by not relying on it.
+    Ok(p.cast::<[f64; N]>().read_unaligned())
+}
+
+/// A pose from C: `r` 9 doubles row by row, `t` 3 doubles.
+///
+/// # Safety
+/// Each pointer is NULL or points to that many doubles.
+pub(crate) unsafe fn read_pose(r: *const f64, t: *const f64) -> Result<Pose, Error> {
+    let r: [f64; 9] = read_doubles(r)?;
+    let t: [f64; 3] = read_doubles(t)?;
+    Ok(Pose::new(
+        [[r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]],
+        t,
+    ))
+}
+
+/// A query's queue size from C: at least 1.
+pub(crate) fn queue_size(qsize: c_int) -> Result<usize, Error> {
+    match usize::try_from(qsize) {
+        Ok(q) if q >= 1 => Ok(q),
+        _ => Err(Error::InvalidArgument),
+    }
+}
+
+/// Resets a result to its freshly created state after an internal fault, so that C never sees a
+/// half-written answer.
+///
+/// # Safety
+/// `r` is NULL or a live handle.
+pub(crate) unsafe fn reset<T: Default>(r: *mut T) {
+    if let Ok(r) = deref_mut(r) {
+        *r = T::default();
+    }
+}
+
+/// The work counters of a result, for the statistics getters; `None` for NULL.
+///
+/// # Safety
+/// `r` is NULL or a live handle of its kind.
+pub(crate) unsafe fn stat<T>(r: *const T, get: impl FnOnce(&T) -> Stats) -> Option<Stats> {
+    deref(r).ok().map(get)
+}
+
+/// A counter for C's `int64_t` (saturating; no query performs 2^63 tests).
+pub(crate) fn count(n: u64) -> i64 {
+    i64::try_from(n).unwrap_or(i64::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_becomes_the_fallback_and_recover_runs() {
+        let mut recovered = false;
+        let v = boundary(
+            PQP_ERR_INTERNAL,
+            || recovered = true,
+            || -> c_int { panic!("bug") },
+        );
+        assert_eq!(v, PQP_ERR_INTERNAL);
+        assert!(recovered);
+        // The thread is usable afterwards and the flag is restored.
+        assert_eq!(boundary(-1, || {}, || 5), 5);
+        assert!(!IN_C_CALL.with(Cell::get));
+    }
+
+    #[test]
+    fn a_panicking_recover_is_contained() {
+        let v = boundary(7, || panic!("recover bug"), || -> i32 { panic!("bug") });
+        assert_eq!(v, 7);
+    }
+
+    #[test]
+    fn status_maps_results() {
+        assert_eq!(status(|| Ok(())), PQP_OK);
+        assert_eq!(status(|| Err(Error::NullPointer)), PQP_ERR_NULL_POINTER);
+        assert_eq!(status(|| panic!("bug")), PQP_ERR_INTERNAL);
+    }
+}

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Install/consumer test (run by ctest as install_consumer): installs a build into a temporary
+# prefix, then, in a temporary directory outside the source tree, checks what a user gets:
+#   - the installed files and links, and the shared library's soname (readelf -d);
+#   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all three),
+#     with -Wall -Wextra -pedantic -Werror;
+#   - programs built with `pkg-config --cflags --libs pqp`, with pkg-config --static against
+#     libpqp.a, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
+#     -I<prefix>/include -L<prefix>/lib -lPQP, all of which must run and answer correctly.
+#
+# Usage: consumer-test.sh BUILD_DIR CONSUMER_SOURCE_DIR CC CXX CMAKE
+set -euo pipefail
+
+build_dir=$1
+consumer_src=$2
+cc=$3
+cxx=$4
+cmake=$5
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/pqp-consumer.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+prefix=$work/prefix
+warn=(-Wall -Wextra -pedantic -Werror)
+
+step() { printf '\n== %s\n' "$*"; }
+fail() {
+    echo "FAIL: $*" >&2
+    exit 1
+}
+
+step "install into $prefix"
+"$cmake" --install "$build_dir" --prefix "$prefix"
+
+cp -r "$consumer_src" "$work/src"
+cd "$work"
+lib=$prefix/lib
+inc=$prefix/include
+
+step "installed files"
+for f in lib/libpqp.so.1.0.0 lib/libpqp.so.1 lib/libpqp.so lib/libpqp.a lib/libPQP.so lib/libPQP.a \
+    include/pqp/pqp.h include/PQP.h include/PQP_Compile.h lib/pkgconfig/pqp.pc \
+    lib/cmake/pqp/pqpConfig.cmake lib/cmake/pqp/pqpConfigVersion.cmake; do
+    [[ -e $prefix/$f ]] || fail "missing $f"
+done
+for l in libpqp.so.1 libpqp.so libPQP.so libPQP.a; do
+    [[ -L $lib/$l ]] || fail "$l is not a symbolic link"
+done
+[[ $(readlink -f "$lib/libpqp.so") == $(readlink -f "$lib/libpqp.so.1.0.0") ]] || fail "libpqp.so does not lead to libpqp.so.1.0.0"
+[[ $(readlink -f "$lib/libPQP.so") == $(readlink -f "$lib/libpqp.so.1.0.0") ]] || fail "libPQP.so does not lead to libpqp.so.1.0.0"
+[[ $(readlink -f "$lib/libPQP.a") == $(readlink -f "$lib/libpqp.a") ]] || fail "libPQP.a does not lead to libpqp.a"
+ls -l "$lib"
+
+step "soname"
+readelf -d "$lib/libpqp.so.1.0.0" | grep SONAME
+readelf -d "$lib/libpqp.so.1.0.0" | grep -q 'Library soname: \[libpqp\.so\.1\]' || fail "soname is not libpqp.so.1"
+
+step "every header compiles alone"
+printf '#include <pqp/pqp.h>\n' >h_c.c
+"$cc" -std=c99 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
+"$cc" -std=c11 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
+for std in c++11 c++14 c++17 c++20; do
+    for h in pqp/pqp.h PQP.h PQP_Compile.h; do
+        printf '#include <%s>\n' "$h" >h_cxx.cpp
+        "$cxx" -std=$std "${warn[@]}" -I"$inc" -c h_cxx.cpp -o h_cxx.o || fail "$h as $std"
+    done
+done
+echo "ok"
+
+step "pkg-config"
+export PKG_CONFIG_PATH=$lib/pkgconfig
+pkg-config --modversion pqp
+pkg-config --cflags --libs pqp
+# shellcheck disable=SC2046 # word splitting of pkg-config's flags is intended
+"$cc" -std=c99 "${warn[@]}" src/consumer.c $(pkg-config --cflags --libs pqp) -lm -o consumer_pkg
+readelf -d consumer_pkg | grep -q 'NEEDED.*\[libpqp\.so\.1\]' || fail "consumer_pkg does not need libpqp.so.1"
+LD_LIBRARY_PATH=$lib ./consumer_pkg
+
+step "pkg-config --static, against libpqp.a"
+static_libs=$(pkg-config --static --libs-only-l pqp | sed -e 's/-lpqp\b//')
+echo "private libraries: $static_libs"
+# shellcheck disable=SC2046,SC2086
+"$cc" -std=c99 "${warn[@]}" src/consumer.c $(pkg-config --cflags pqp) "$lib/libpqp.a" $static_libs -o consumer_static_pkg
+if readelf -d consumer_static_pkg | grep -q 'NEEDED.*libpqp'; then fail "consumer_static_pkg needs libpqp.so"; fi
+./consumer_static_pkg
+
+step "PQP 1.3 style: -I.. -L.. -lPQP"
+"$cxx" -std=c++11 "${warn[@]}" src/legacy.cpp -I"$inc" -L"$lib" -lPQP -o legacy_lPQP
+readelf -d legacy_lPQP | grep -q 'NEEDED.*\[libpqp\.so\.1\]' || fail "legacy_lPQP does not need libpqp.so.1"
+LD_LIBRARY_PATH=$lib ./legacy_lPQP
+
+step "find_package(pqp) + PQP::PQP"
+"$cmake" -S src -B cmake-build -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx"
+"$cmake" --build cmake-build
+./cmake-build/consumer_c
+./cmake-build/consumer_legacy
+./cmake-build/consumer_static
+if readelf -d cmake-build/consumer_static | grep -q 'NEEDED.*libpqp'; then fail "consumer_static needs libpqp.so"; fi
+
+step "all consumer checks passed"

@@ -1,0 +1,234 @@
+//! Separation distance: the result handle, its getters, and pqp_distance.
+//!
+//! Getters never fail: given NULL they return a fallback value (stated on each).
+
+#![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
+
+use super::{
+    boundary, code, count, deref, deref_mut, free_handle, into_handle, pqp_model, queue_size,
+    read_pose, reset, stat, PQP_ERR_INTERNAL,
+};
+use crate::error::Error;
+use crate::query::{distance_into, DistanceOptions, DistanceResult};
+use std::ffi::c_int;
+use std::ptr;
+
+/// The answer of pqp_distance (opaque). Reusing one for the next query on the same two models starts
+/// from the last closest triangle pair (triangle caching).
+#[allow(non_camel_case_types)]
+#[derive(Default)]
+pub struct pqp_distance_result {
+    pub(crate) result: DistanceResult,
+}
+
+/// Creates an empty distance result (distance +infinity, no cached triangle pair).
+///
+/// @return a new result, to be freed with pqp_distance_result_destroy; NULL only if memory could
+///         not be allocated.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub extern "C" fn pqp_distance_result_create() -> *mut pqp_distance_result {
+    boundary(
+        ptr::null_mut(),
+        || {},
+        || into_handle(pqp_distance_result::default()),
+    )
+}
+
+/// Frees a distance result.
+///
+/// @param r  a result from pqp_distance_result_create, or NULL (then nothing happens).
+/// Thread safety: must not run concurrently with any other call using r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result) {
+    boundary((), || {}, || free_handle(r))
+}
+
+/// Computes the separation distance of two posed models and a closest pair of points
+/// (PQP_Distance).
+///
+/// Poses are as for pqp_collide. The answer is within the error bounds asked for:
+/// true <= distance <= min(true * (1 + rel_err), true + abs_err); abs_err = 0 asks for the exact
+/// distance whatever rel_err is (as in PQP), abs_err = +infinity lets only rel_err act. When the
+/// models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1. Reusing r
+/// for the next query on the same two models starts from the last closest triangle pair (the
+/// triangle cache lives in r, so models stay shareable).
+///
+/// @param r        the result to fill (its previous answer is replaced).
+/// @param R1, T1   the pose of model 1.
+/// @param m1       model 1 (built).
+/// @param R2, T2   the pose of model 2.
+/// @param m2       model 2 (built; may be the same model as m1).
+/// @param rel_err  relative error allowed, >= 0.
+/// @param abs_err  absolute error allowed, >= 0 (0: exact).
+/// @param qsize    search queue size, >= 1 (PQP's default is 2: depth-first, nearer pair first;
+///                 larger values search best-first with that many pending pairs).
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
+///         rel_err or abs_err is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a
+///         model is not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger
+///         than 1e150 in magnitude; PQP_ERR_INTERNAL on an internal fault (r is then reset to its
+///         freshly created state). On any other error r is left unchanged.
+/// Thread safety: any number of queries may use the same models at once from different threads;
+///                r must not be used by another thread during the call.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance(
+    r: *mut pqp_distance_result,
+    R1: *const f64,
+    T1: *const f64,
+    m1: *const pqp_model,
+    R2: *const f64,
+    T2: *const f64,
+    m2: *const pqp_model,
+    rel_err: f64,
+    abs_err: f64,
+    qsize: c_int,
+) -> c_int {
+    let body = || -> Result<(), Error> {
+        let result = deref_mut(r)?;
+        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
+        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
+        let options = DistanceOptions {
+            rel_err,
+            abs_err,
+            qsize: queue_size(qsize)?,
+        };
+        distance_into(
+            &mut result.result,
+            &m1.model,
+            &pose1,
+            &m2.model,
+            &pose2,
+            &options,
+        )
+    };
+    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+}
+
+/// The distance the last pqp_distance on r found.
+///
+/// With error bounds rel_err and abs_err (abs_err > 0): true <= distance <=
+/// min(true * (1 + rel_err), true + abs_err); exact when abs_err is 0. 0 when the models touch or
+/// overlap.
+///
+/// @param r  the result, or NULL.
+/// @return the distance; +infinity before any query; NaN if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_distance(r: *const pqp_distance_result) -> f64 {
+    boundary(
+        f64::NAN,
+        || {},
+        || deref(r).map_or(f64::NAN, |r| r.result.distance),
+    )
+}
+
+/// The closest point on model 1 found by the last pqp_distance on r, in model 1's frame.
+///
+/// When the models overlap it is a point common to both models (p1 and p2 are then the same point
+/// in world coordinates).
+///
+/// @param r  the result, or NULL.
+/// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; (0, 0, 0)
+///         before any query; NULL if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_p1(r: *const pqp_distance_result) -> *const f64 {
+    boundary(
+        ptr::null(),
+        || {},
+        || deref(r).map_or(ptr::null(), |r| r.result.p1.as_ptr()),
+    )
+}
+
+/// The closest point on model 2 found by the last pqp_distance on r, in model 2's frame.
+///
+/// @param r  the result, or NULL.
+/// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; (0, 0, 0)
+///         before any query; NULL if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_p2(r: *const pqp_distance_result) -> *const f64 {
+    boundary(
+        ptr::null(),
+        || {},
+        || deref(r).map_or(ptr::null(), |r| r.result.p2.as_ptr()),
+    )
+}
+
+/// Whether the last pqp_distance on r found the models touching or overlapping (distance 0).
+///
+/// @param r  the result, or NULL.
+/// @return 1 if they touch or overlap, else 0 (also before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_overlap(r: *const pqp_distance_result) -> c_int {
+    boundary(
+        0,
+        || {},
+        || deref(r).map_or(0, |r| c_int::from(r.result.overlap)),
+    )
+}
+
+/// The id of model 1's triangle of the closest (or, when overlapping, an intersecting) triangle
+/// pair found by the last pqp_distance on r.
+///
+/// @param r  the result, or NULL.
+/// @return the id given to pqp_model_add_tri; -1 before any query or if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_id1(r: *const pqp_distance_result) -> c_int {
+    boundary(-1, || {}, || deref(r).map_or(-1, |r| r.result.id1))
+}
+
+/// The id of model 2's triangle of the closest (or, when overlapping, an intersecting) triangle
+/// pair found by the last pqp_distance on r.
+///
+/// @param r  the result, or NULL.
+/// @return the id given to pqp_model_add_tri; -1 before any query or if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_id2(r: *const pqp_distance_result) -> c_int {
+    boundary(-1, || {}, || deref(r).map_or(-1, |r| r.result.id2))
+}
+
+/// The number of bounding-volume distance tests the last pqp_distance on r performed.
+///
+/// @param r  the result, or NULL.
+/// @return the count (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_num_bv_tests(r: *const pqp_distance_result) -> i64 {
+    boundary(
+        0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.bv_tests)),
+    )
+}
+
+/// The number of triangle-pair distance tests the last pqp_distance on r performed.
+///
+/// @param r  the result, or NULL.
+/// @return the count (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_num_tri_tests(r: *const pqp_distance_result) -> i64 {
+    boundary(
+        0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.tri_tests)),
+    )
+}
+
+/// The wall-clock time of the last pqp_distance on r.
+///
+/// @param r  the result, or NULL.
+/// @return seconds (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_query_time_secs(r: *const pqp_distance_result) -> f64 {
+    boundary(
+        0.0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0.0, |s| s.query_time_secs),
+    )
+}

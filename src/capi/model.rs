@@ -1,0 +1,151 @@
+//! Model handles and PQP's build protocol (begin, add triangles, end).
+
+use super::{boundary, deref, deref_mut, free_handle, into_handle, read_doubles, status};
+use crate::model::Model;
+use std::ffi::c_int;
+
+/// A triangle model (opaque). Create with pqp_model_create, fill with pqp_model_begin,
+/// pqp_model_add_tri and pqp_model_end, free with pqp_model_destroy.
+#[allow(non_camel_case_types)]
+pub struct pqp_model {
+    pub(crate) model: Model,
+}
+
+// Queries take `const pqp_model *` from any number of threads at once: the model must be shareable.
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<pqp_model>();
+};
+
+/// Creates an empty model.
+///
+/// @return a new model, to be freed with pqp_model_destroy; NULL only if memory could not be
+///         allocated.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub extern "C" fn pqp_model_create() -> *mut pqp_model {
+    boundary(
+        std::ptr::null_mut(),
+        || {},
+        || {
+            into_handle(pqp_model {
+                model: Model::new(),
+            })
+        },
+    )
+}
+
+/// Frees a model and everything it holds.
+///
+/// @param m  a model from pqp_model_create, or NULL (then nothing happens). It must not be used
+///           afterwards.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
+    boundary((), || {}, || free_handle(m))
+}
+
+/// Starts building a model (PQP's BeginModel).
+///
+/// On a model that is not fresh (already begun, or built) the model is cleared, the call returns
+/// PQP_ERR_BUILD_OUT_OF_SEQUENCE, and the model is begun anyway: it accepts pqp_model_add_tri.
+///
+/// @param m              the model.
+/// @param num_tris_hint  how many triangles will be added (a capacity hint only; < 0 is taken as 0).
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE as above;
+///         PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int) -> c_int {
+    status(|| {
+        let m = deref_mut(m)?;
+        m.model.begin(usize::try_from(num_tris_hint).unwrap_or(0))
+    })
+}
+
+/// Adds a triangle to a model being built (PQP's AddTri).
+///
+/// Before pqp_model_begin, the model is begun implicitly (as PQP does). Degenerate triangles (a
+/// segment, a point) are accepted.
+///
+/// @param m           the model.
+/// @param p1, p2, p3  the vertices, 3 doubles each (x, y, z in the model's frame).
+/// @param id          the caller's id for this triangle, reported by queries (any value).
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if m, p1, p2 or p3 is NULL;
+///         PQP_ERR_BUILD_OUT_OF_SEQUENCE after a successful pqp_model_end (the triangle is ignored);
+///         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
+///         magnitude (the triangle is refused; the model stays usable);
+///         PQP_ERR_MODEL_OUT_OF_MEMORY if the triangle could not be stored;
+///         PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_add_tri(
+    m: *mut pqp_model,
+    p1: *const f64,
+    p2: *const f64,
+    p3: *const f64,
+    id: c_int,
+) -> c_int {
+    status(|| {
+        let m = deref_mut(m)?;
+        let (a, b, c) = (read_doubles(p1)?, read_doubles(p2)?, read_doubles(p3)?);
+        m.model.add_triangle(a, b, c, id)
+    })
+}
+
+/// Finishes a model: builds its bounding-volume hierarchy (PQP's EndModel). After it the model is
+/// immutable and can be queried.
+///
+/// @param m  the model.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model
+///         is already built or was never begun (no pqp_model_begin or pqp_model_add_tri);
+///         PQP_ERR_BUILD_EMPTY_MODEL if no triangle was added (the model stays unbuilt: queries
+///         return PQP_ERR_UNPROCESSED_MODEL); PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could
+///         not be allocated; PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
+    status(|| deref_mut(m)?.model.end())
+}
+
+/// The number of triangles a model holds (added so far, or in the built model).
+///
+/// @param m  the model, or NULL.
+/// @return the count; 0 if m is NULL.
+/// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_num_tris(m: *const pqp_model) -> c_int {
+    boundary(
+        0,
+        || {},
+        || match deref(m) {
+            // The build protocol refuses a triangle beyond i32::MAX, so this never clamps.
+            Ok(m) => c_int::try_from(m.model.num_triangles()).unwrap_or(c_int::MAX),
+            Err(_) => 0,
+        },
+    )
+}
+
+/// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping).
+///
+/// @param m  the model, or NULL.
+/// @return the byte count; 0 if m is NULL.
+/// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_memory_usage(m: *const pqp_model) -> u64 {
+    boundary(0, || {}, || deref(m).map_or(0, |m| m.model.memory_usage()))
+}
+
+/// Whether a model is built (its last pqp_model_end succeeded) and can be queried.
+///
+/// @param m  the model, or NULL.
+/// @return 1 if built, else 0; 0 if m is NULL.
+/// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_is_built(m: *const pqp_model) -> c_int {
+    boundary(
+        0,
+        || {},
+        || deref(m).map_or(0, |m| c_int::from(m.model.is_built())),
+    )
+}

@@ -1,0 +1,220 @@
+//! Tolerance: the result handle, its getters, and pqp_tolerance.
+//!
+//! Getters never fail: given NULL they return a fallback value (stated on each).
+
+#![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
+
+use super::{
+    boundary, code, count, deref, deref_mut, free_handle, into_handle, pqp_model, queue_size,
+    read_pose, reset, stat, PQP_ERR_INTERNAL,
+};
+use crate::error::Error;
+use crate::query::{tolerance_into, ToleranceResult};
+use std::ffi::c_int;
+use std::ptr;
+
+/// The answer of pqp_tolerance (opaque). Reusing one for the next query on the same two models starts
+/// from the triangle pair that decided the last answer.
+#[allow(non_camel_case_types)]
+#[derive(Default)]
+pub struct pqp_tolerance_result {
+    pub(crate) result: ToleranceResult,
+}
+
+/// Creates an empty tolerance result (not closer, distance +infinity, no cached triangle pair).
+///
+/// @return a new result, to be freed with pqp_tolerance_result_destroy; NULL only if memory could
+///         not be allocated.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub extern "C" fn pqp_tolerance_result_create() -> *mut pqp_tolerance_result {
+    boundary(
+        ptr::null_mut(),
+        || {},
+        || into_handle(pqp_tolerance_result::default()),
+    )
+}
+
+/// Frees a tolerance result.
+///
+/// @param r  a result from pqp_tolerance_result_create, or NULL (then nothing happens).
+/// Thread safety: must not run concurrently with any other call using r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_result) {
+    boundary((), || {}, || free_handle(r))
+}
+
+/// Decides whether two posed models are within a distance of each other (PQP_Tolerance).
+///
+/// Poses are as for pqp_collide. Cheaper than pqp_distance: it stops at the first triangle pair
+/// within the tolerance and skips everything farther than it. Reusing r for the next query on the
+/// same two models first tries the triangle pair that decided the last answer.
+///
+/// @param r          the result to fill (its previous answer is replaced).
+/// @param R1, T1     the pose of model 1.
+/// @param m1         model 1 (built).
+/// @param R2, T2     the pose of model 2.
+/// @param m2         model 2 (built; may be the same model as m1).
+/// @param tolerance  the distance asked about, >= 0.
+/// @param qsize      search queue size, >= 1 (PQP's default is 2), as for pqp_distance.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
+///         tolerance is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a model is
+///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150
+///         in magnitude; PQP_ERR_INTERNAL on an internal fault (r is then reset to its freshly
+///         created state). On any other error r is left unchanged.
+/// Thread safety: any number of queries may use the same models at once from different threads;
+///                r must not be used by another thread during the call.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance(
+    r: *mut pqp_tolerance_result,
+    R1: *const f64,
+    T1: *const f64,
+    m1: *const pqp_model,
+    R2: *const f64,
+    T2: *const f64,
+    m2: *const pqp_model,
+    tolerance: f64,
+    qsize: c_int,
+) -> c_int {
+    let body = || -> Result<(), Error> {
+        let result = deref_mut(r)?;
+        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
+        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
+        let qsize = queue_size(qsize)?;
+        tolerance_into(
+            &mut result.result,
+            &m1.model,
+            &pose1,
+            &m2.model,
+            &pose2,
+            tolerance,
+            qsize,
+        )
+    };
+    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+}
+
+/// Whether the last pqp_tolerance on r found the models within the tolerance (distance <=
+/// tolerance).
+///
+/// @param r  the result, or NULL.
+/// @return 1 if closer than (or at) the tolerance, else 0 (also before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_closer_than_tolerance(
+    r: *const pqp_tolerance_result,
+) -> c_int {
+    boundary(
+        0,
+        || {},
+        || deref(r).map_or(0, |r| c_int::from(r.result.closer_than_tolerance)),
+    )
+}
+
+/// A distance found by the last pqp_tolerance on r.
+///
+/// When closer than the tolerance: the distance of a triangle pair within the tolerance (not
+/// necessarily the closest pair). Otherwise: a lower bound on the models' distance, greater than the
+/// tolerance.
+///
+/// @param r  the result, or NULL.
+/// @return the distance; +infinity before any query; NaN if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_distance(r: *const pqp_tolerance_result) -> f64 {
+    boundary(
+        f64::NAN,
+        || {},
+        || deref(r).map_or(f64::NAN, |r| r.result.distance),
+    )
+}
+
+/// The tolerance the last pqp_tolerance on r was asked about.
+///
+/// @param r  the result, or NULL.
+/// @return the tolerance; 0 before any query; NaN if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_tolerance(r: *const pqp_tolerance_result) -> f64 {
+    boundary(
+        f64::NAN,
+        || {},
+        || deref(r).map_or(f64::NAN, |r| r.result.tolerance),
+    )
+}
+
+/// When the last pqp_tolerance on r found the models closer than the tolerance: the point on
+/// model 1 of the triangle pair within the tolerance, in model 1's frame. Otherwise (0, 0, 0).
+///
+/// @param r  the result, or NULL.
+/// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; NULL if r
+///         is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_p1(r: *const pqp_tolerance_result) -> *const f64 {
+    boundary(
+        ptr::null(),
+        || {},
+        || deref(r).map_or(ptr::null(), |r| r.result.p1.as_ptr()),
+    )
+}
+
+/// When the last pqp_tolerance on r found the models closer than the tolerance: the point on
+/// model 2 of the triangle pair within the tolerance, in model 2's frame. Otherwise (0, 0, 0).
+///
+/// @param r  the result, or NULL.
+/// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; NULL if r
+///         is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_p2(r: *const pqp_tolerance_result) -> *const f64 {
+    boundary(
+        ptr::null(),
+        || {},
+        || deref(r).map_or(ptr::null(), |r| r.result.p2.as_ptr()),
+    )
+}
+
+/// The number of bounding-volume distance tests the last pqp_tolerance on r performed.
+///
+/// @param r  the result, or NULL.
+/// @return the count (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_num_bv_tests(r: *const pqp_tolerance_result) -> i64 {
+    boundary(
+        0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.bv_tests)),
+    )
+}
+
+/// The number of triangle-pair distance tests the last pqp_tolerance on r performed.
+///
+/// @param r  the result, or NULL.
+/// @return the count (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_num_tri_tests(r: *const pqp_tolerance_result) -> i64 {
+    boundary(
+        0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.tri_tests)),
+    )
+}
+
+/// The wall-clock time of the last pqp_tolerance on r.
+///
+/// @param r  the result, or NULL.
+/// @return seconds (0 before any query); 0 if r is NULL.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_query_time_secs(
+    r: *const pqp_tolerance_result,
+) -> f64 {
+    boundary(
+        0.0,
+        || {},
+        || stat(r, |r| r.result.stats).map_or(0.0, |s| s.query_time_secs),
+    )
+}
