@@ -24,6 +24,7 @@
 #include <fcl/narrowphase/detail/traversal/distance/mesh_distance_traversal_node.h>
 #include <fcl/narrowphase/distance.h>
 #include <malloc.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
@@ -1021,26 +1022,43 @@ struct ThreadRow {
     std::string lib;
     int threads;
     double qps;
+    double cpu_us;  // CPU time per query, summed over the threads
 };
 std::vector<ThreadRow> g_threads;
 
-// Queries per second over the pose list with `nt` threads, pose i going to thread i % nt; the best
-// of `reps` runs of the whole list. make_worker(t) returns the per-thread loop body.
+double thread_cpu_secs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Queries per second over the pose list with `nt` threads, pose i going to thread i % nt: the best
+// of `reps` runs of the whole list. Also the CPU time per query (the least over the runs): unlike
+// the wall clock it does not depend on other processes leaving the cores free, so equal CPU time per
+// query with 1 and with nt threads shows that the threads do not slow each other down.
+// make_worker() returns the per-thread loop body.
 template <class W>
-double parallel_qps(size_t n, int nt, int reps, W&& make_worker) {
+std::pair<double, double> parallel_qps(size_t n, int nt, int reps, W&& make_worker) {
     double best = std::numeric_limits<double>::infinity();
+    double best_cpu = std::numeric_limits<double>::infinity();
     for (int r = 0; r < reps; ++r) {
         std::vector<std::thread> pool;
+        std::vector<double> cpu(static_cast<size_t>(nt), 0.0);
         const auto t0 = Clock::now();
         for (int t = 0; t < nt; ++t)
             pool.emplace_back([&, t] {
                 auto work = make_worker();
+                const double c0 = thread_cpu_secs();
                 for (size_t i = static_cast<size_t>(t); i < n; i += static_cast<size_t>(nt)) work(i);
+                cpu[static_cast<size_t>(t)] = thread_cpu_secs() - c0;
             });
         for (auto& th : pool) th.join();
         best = std::min(best, secs(t0, Clock::now()));
+        double total = 0.0;
+        for (double x : cpu) total += x;
+        best_cpu = std::min(best_cpu, total);
     }
-    return static_cast<double>(n) / best;
+    return {static_cast<double>(n) / best, best_cpu / static_cast<double>(n)};
 }
 
 void workload_threads(const Options& o) {
@@ -1066,7 +1084,10 @@ void workload_threads(const Options& o) {
         };
         return W{&c, &rc, {pqp_distance_result_create(), pqp_distance_result_destroy}};
     };
-    for (int t : {1, nt}) g_threads.push_back({"pqp-rs", t, parallel_qps(c.size(), t, o.reps, ours_worker)});
+    for (int t : {1, nt}) {
+        const auto q = parallel_qps(c.size(), t, o.reps, ours_worker);
+        g_threads.push_back({"pqp-rs", t, q.first, q.second * 1e6});
+    }
     check(rc.load(), "pqp_distance (threads)");
     if (!o.ours_only) {
         auto fcl_worker = [&]() {
@@ -1081,12 +1102,22 @@ void workload_threads(const Options& o) {
             };
             return W{&c, fcl::DistanceRequestd(true), fcl::DistanceResultd()};
         };
-        for (int t : {1, nt}) g_threads.push_back({"FCL RSS", t, parallel_qps(c.size(), t, o.reps, fcl_worker)});
+        for (int t : {1, nt}) {
+            const auto q = parallel_qps(c.size(), t, o.reps, fcl_worker);
+            g_threads.push_back({"FCL RSS", t, q.first, q.second * 1e6});
+        }
     }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Report
+
+std::string load_average() {
+    std::ifstream in("/proc/loadavg");
+    std::string a, b, c;
+    in >> a >> b >> c;
+    return a + " " + b + " " + c;
+}
 
 void report(const Options& o) {
     std::printf("\n## Queries (median microseconds per query; FCL column is FCL's fastest BV type)\n\n");
@@ -1124,13 +1155,16 @@ void report(const Options& o) {
                         b.bytes_per_tri_reported, b.bytes_per_tri_heap);
     }
     if (!g_threads.empty()) {
-        std::printf("\n## Threads (workload 1, exact distance)\n\n| library | threads | queries/s | speed-up |\n|---|---:|---:|---:|\n");
+        std::printf("\n## Threads (workload 1, exact distance)\n\n| library | threads | queries/s | speed-up | CPU us/query "
+                    "| CPU time ratio to 1 thread |\n|---|---:|---:|---:|---:|---:|\n");
         for (const auto& t : g_threads) {
-            double base = NAN;
+            double base = NAN, base_cpu = NAN;
             for (const auto& u : g_threads)
-                if (u.lib == t.lib && u.threads == 1) base = u.qps;
-            std::printf("| %s | %d | %.0f | %.2f |\n", t.lib.c_str(), t.threads, t.qps, t.qps / base);
+                if (u.lib == t.lib && u.threads == 1) base = u.qps, base_cpu = u.cpu_us;
+            std::printf("| %s | %d | %.0f | %.2f | %.1f | %.3f |\n", t.lib.c_str(), t.threads, t.qps, t.qps / base,
+                        t.cpu_us, t.cpu_us / base_cpu);
         }
+        std::printf("\nload average at the end of the threads workload: %s\n", load_average().c_str());
     }
     if (!g_notes.empty()) {
         std::printf("\n## Notes and disagreements\n\n");
