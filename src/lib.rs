@@ -36,6 +36,7 @@
 pub mod bounding_volume;
 pub(crate) mod bvh;
 pub mod capi;
+pub mod convex;
 #[doc(hidden)]
 pub mod diagnostics;
 pub mod error;
