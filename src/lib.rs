@@ -37,6 +37,8 @@ pub mod bounding_volume;
 pub(crate) mod bvh;
 pub mod capi;
 pub mod convex;
+#[doc(hidden)]
+pub mod diagnostics;
 pub mod error;
 pub mod geometry;
 pub mod math;

@@ -1,0 +1,277 @@
+//! Internal measurements for the benchmark suite (`examples/bvtt_efficiency.rs`, `BENCHMARKS.md`).
+//! Not part of the supported API: hidden from the docs and free to change.
+//!
+//! A distance query walks the bounding-volume traversal tree (BVTT): its nodes are pairs of
+//! hierarchy nodes, its root the pair of roots, and a node's children are the pairs obtained by
+//! splitting one side by the query's descent rule. A search that knew the final distance `d` from
+//! the start would still have to expand every BVTT node whose lower bound is below `d` (any of them
+//! might hide a closer pair) and could skip every other. Those nodes form the *minimal BVTT*; how far
+//! a real query's work exceeds it measures how well its search order and initial guess work.
+
+use crate::bounding_volume::{BoundingVolume, DistanceVolume};
+use crate::bvh::{Bvh, Node};
+use crate::error::Error;
+use crate::math::{Pose, RelPose};
+use crate::model::Model;
+
+/// Sizes of the minimal BVTT of a distance query (see the module documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MinimalBvtt {
+    /// BVTT nodes whose bound is below the distance and whose ancestors' bounds all are too.
+    pub nodes_below: u64,
+    /// Bounds that any search using the query's descent rule must compute: the root's, and both
+    /// children's of every inner node counted in `nodes_below`. Comparable with `Stats::bv_tests`.
+    pub bound_tests: u64,
+    /// Leaf pairs (triangle pairs) counted in `nodes_below`: triangle tests any such search makes.
+    pub leaf_pairs_below: u64,
+}
+
+/// The minimal BVTT of the distance query between `m1` at `pose1` and `m2` at `pose2`, given their
+/// final distance `distance` (take it from an exact query). Walks the BVTT from the root with the
+/// query's descent rule and bounds, descending a node only when its bound is below `distance`.
+pub fn minimal_bvtt(
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    distance: f64,
+) -> Result<MinimalBvtt, Error> {
+    let b1 = m1.bvh()?;
+    let b2 = m2.bvh()?;
+    pose1.validate()?;
+    pose2.validate()?;
+    let rel = RelPose::between(pose1, pose2);
+    Ok(walk(b1, b2, &rel, distance))
+}
+
+/// `minimal_bvtt(..).nodes_below`: the number of BVTT nodes whose bound is below the final
+/// distance and whose parent's bound is too.
+pub fn minimal_bvtt_size(
+    m1: &Model,
+    pose1: &Pose,
+    m2: &Model,
+    pose2: &Pose,
+    distance: f64,
+) -> Result<u64, Error> {
+    Ok(minimal_bvtt(m1, pose1, m2, pose2, distance)?.nodes_below)
+}
+
+/// The query's descent rule (`query::traversal::descend_first`, which is private to the query
+/// module): split model 1's node when model 2's is a leaf, model 2's when model 1's is, else the
+/// larger volume, model 1's on a tie. The tests below check that this walk reproduces the query's.
+fn split_first(a: &Node, b: &Node) -> bool {
+    if b.child < 0 {
+        return true;
+    }
+    if a.child < 0 {
+        return false;
+    }
+    a.rss.size() >= b.rss.size()
+}
+
+fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
+    let bound =
+        |a: usize, b: usize| DistanceVolume::distance(&b1.nodes[a].rss, &b2.nodes[b].rss, rel);
+    let mut out = MinimalBvtt {
+        bound_tests: 1,
+        ..MinimalBvtt::default()
+    };
+    let mut stack = vec![(0usize, 0usize, bound(0, 0))];
+    while let Some((a, b, lower)) = stack.pop() {
+        // Written so that a NaN bound is not descended.
+        let below = lower < d;
+        if !below {
+            continue;
+        }
+        out.nodes_below += 1;
+        let (na, nb) = (&b1.nodes[a], &b2.nodes[b]);
+        if na.child < 0 && nb.child < 0 {
+            out.leaf_pairs_below += 1;
+            continue;
+        }
+        let children = if split_first(na, nb) {
+            let c = na.first_child();
+            [(c, b), (c + 1, b)]
+        } else {
+            let c = nb.first_child();
+            [(a, c), (a, c + 1)]
+        };
+        for (x, y) in children {
+            out.bound_tests += 1;
+            stack.push((x, y, bound(x, y)));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::query::{distance_into, DistanceOptions, DistanceResult};
+
+    /// A small deterministic generator (tests only).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A closed-ish bumpy blob: a UV sphere with a random radius per vertex ring.
+    fn blob(rng: &mut Lcg, nlat: usize, nlon: usize) -> Model {
+        let radii: Vec<f64> = (0..=nlat).map(|_| 0.8 + 0.4 * rng.next()).collect();
+        let v = |i: usize, j: usize| {
+            let th = std::f64::consts::PI * i as f64 / nlat as f64;
+            let ph = 2.0 * std::f64::consts::PI * j as f64 / nlon as f64;
+            let r = radii[i];
+            [
+                r * th.sin() * ph.cos(),
+                r * th.sin() * ph.sin(),
+                r * th.cos(),
+            ]
+        };
+        let mut tris = Vec::new();
+        for i in 0..nlat {
+            for j in 0..nlon {
+                let j1 = (j + 1) % nlon;
+                let id = tris.len() as i32;
+                tris.push((v(i, j), v(i + 1, j), v(i + 1, j1), id));
+                tris.push((v(i, j), v(i + 1, j1), v(i, j1), id + 1));
+            }
+        }
+        Model::from_triangles(tris).unwrap()
+    }
+
+    fn rotation(rng: &mut Lcg) -> [[f64; 3]; 3] {
+        let (u1, u2, u3) = (rng.next(), rng.next(), rng.next());
+        let (s1, s2) = ((1.0 - u1).sqrt(), u1.sqrt());
+        let (a, b) = (
+            2.0 * std::f64::consts::PI * u2,
+            2.0 * std::f64::consts::PI * u3,
+        );
+        let (w, x, y, z) = (s2 * b.cos(), s1 * a.sin(), s1 * a.cos(), s2 * b.sin());
+        [
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+            ],
+            [
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+            ],
+            [
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
+        ]
+    }
+
+    /// Separated poses: centres 2.5 to 4 apart (the blobs have radius at most 1.2).
+    fn poses(rng: &mut Lcg, n: usize) -> Vec<(Pose, Pose)> {
+        (0..n)
+            .map(|_| {
+                let dir = [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5];
+                let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+                let c = 2.5 + 1.5 * rng.next();
+                let t = [dir[0] / len * c, dir[1] / len * c, dir[2] / len * c];
+                (
+                    Pose::new(rotation(rng), [0.0; 3]),
+                    Pose::new(rotation(rng), t),
+                )
+            })
+            .collect()
+    }
+
+    /// A query started from the closest pair itself (the triangle cache, filled by the same query
+    /// just before) already holds the final distance, so it expands exactly the minimal BVTT: its
+    /// counts must equal the walk's, for the depth-first and the priority-queue searches. This also
+    /// checks that the walk's descent rule is the query's.
+    #[test]
+    fn query_started_at_the_answer_does_exactly_the_minimal_work() {
+        let mut rng = Lcg(7);
+        let a = blob(&mut rng, 12, 16);
+        let b = blob(&mut rng, 9, 20);
+        for (p1, p2) in poses(&mut rng, 25) {
+            for qsize in [2, 8] {
+                let opts = DistanceOptions {
+                    qsize,
+                    ..DistanceOptions::exact()
+                };
+                let mut r = DistanceResult::new();
+                distance_into(&mut r, &a, &p1, &b, &p2, &opts).unwrap();
+                let d = r.distance;
+                assert!(d > 0.0);
+                distance_into(&mut r, &a, &p1, &b, &p2, &opts).unwrap();
+                assert_eq!(r.distance, d);
+                let m = minimal_bvtt(&a, &p1, &b, &p2, d).unwrap();
+                assert!(m.nodes_below >= 1);
+                assert_eq!(r.stats.bv_tests, m.bound_tests, "qsize {qsize}");
+                // The cached pair is tested once before the search starts.
+                assert_eq!(r.stats.tri_tests, m.leaf_pairs_below + 1, "qsize {qsize}");
+            }
+        }
+    }
+
+    /// From a cold start a query can only do more: every minimal node's parent has a bound below
+    /// the final distance, hence below every distance the search holds.
+    #[test]
+    fn cold_query_does_at_least_the_minimal_work() {
+        let mut rng = Lcg(11);
+        let a = blob(&mut rng, 10, 14);
+        let b = blob(&mut rng, 11, 13);
+        for (p1, p2) in poses(&mut rng, 25) {
+            let mut r = DistanceResult::new();
+            distance_into(&mut r, &a, &p1, &b, &p2, &DistanceOptions::exact()).unwrap();
+            let m = minimal_bvtt(&a, &p1, &b, &p2, r.distance).unwrap();
+            assert!(r.stats.bv_tests >= m.bound_tests);
+            assert!(r.stats.tri_tests >= m.leaf_pairs_below);
+            assert!(m.bound_tests >= m.nodes_below);
+            assert_eq!(
+                minimal_bvtt_size(&a, &p1, &b, &p2, r.distance).unwrap(),
+                m.nodes_below
+            );
+        }
+    }
+
+    /// Nothing is below a distance of zero; everything is below infinity (the whole BVTT, whose
+    /// leaf pairs are all triangle pairs).
+    #[test]
+    fn extreme_distances() {
+        let mut rng = Lcg(3);
+        let a = blob(&mut rng, 3, 4);
+        let b = blob(&mut rng, 2, 5);
+        let (p1, p2) = poses(&mut rng, 1)[0];
+        let zero = minimal_bvtt(&a, &p1, &b, &p2, 0.0).unwrap();
+        assert_eq!(
+            zero,
+            MinimalBvtt {
+                nodes_below: 0,
+                bound_tests: 1,
+                leaf_pairs_below: 0
+            }
+        );
+        let all = minimal_bvtt(&a, &p1, &b, &p2, f64::INFINITY).unwrap();
+        let (n1, n2) = (a.num_triangles() as u64, b.num_triangles() as u64);
+        assert_eq!(all.leaf_pairs_below, n1 * n2);
+        // A full binary tree with L leaves has 2L - 1 nodes, and so does the BVTT.
+        assert_eq!(all.nodes_below, 2 * n1 * n2 - 1);
+        assert_eq!(all.bound_tests, all.nodes_below);
+    }
+
+    #[test]
+    fn unbuilt_model_is_refused() {
+        let a = Model::new();
+        let id = Pose::identity();
+        assert_eq!(
+            minimal_bvtt_size(&a, &id, &a, &id, 1.0),
+            Err(Error::UnprocessedModel)
+        );
+    }
+}
