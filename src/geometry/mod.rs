@@ -5,7 +5,7 @@
 //! point-to-mesh and segment-to-mesh queries that way.
 
 mod point_triangle;
-mod predicates;
+pub(crate) mod predicates;
 mod segment_segment;
 mod tri_distance;
 mod tri_overlap;

@@ -141,13 +141,13 @@ pub(crate) fn max_abs(points: &[&Vec3]) -> f64 {
 }
 
 /// A sum of floats held exactly as a non-overlapping expansion, smallest component first.
-struct Expansion<const N: usize> {
+pub(crate) struct Expansion<const N: usize> {
     c: [f64; N],
     len: usize,
 }
 
 impl<const N: usize> Expansion<N> {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Expansion {
             c: [0.0; N],
             len: 0,
@@ -156,7 +156,7 @@ impl<const N: usize> Expansion<N> {
 
     /// Adds `x` exactly (Shewchuk's Grow-Expansion with zero elimination). The length grows by at
     /// most one per call, so `N` terms always fit.
-    fn add(&mut self, x: f64) {
+    pub(crate) fn add(&mut self, x: f64) {
         if x == 0.0 {
             return;
         }
@@ -178,14 +178,14 @@ impl<const N: usize> Expansion<N> {
     }
 
     /// Adds `sign * x * y` exactly.
-    fn add_product(&mut self, sign: f64, x: f64, y: f64) {
+    pub(crate) fn add_product(&mut self, sign: f64, x: f64, y: f64) {
         let (p, e) = two_prod(x, y);
         self.add(sign * p);
         self.add(sign * e);
     }
 
     /// Adds `sign * x * y * z` exactly.
-    fn add_triple(&mut self, sign: f64, x: f64, y: f64, z: f64) {
+    pub(crate) fn add_triple(&mut self, sign: f64, x: f64, y: f64, z: f64) {
         let (p, e) = two_prod(x, y);
         let (p1, e1) = two_prod(p, z);
         let (p2, e2) = two_prod(e, z);
@@ -196,12 +196,17 @@ impl<const N: usize> Expansion<N> {
     }
 
     /// The largest component: it has the sign of the sum and is within an ulp or so of it.
-    fn leading(&self) -> f64 {
+    pub(crate) fn leading(&self) -> f64 {
         if self.len == 0 {
             0.0
         } else {
             self.c[self.len - 1]
         }
+    }
+
+    /// The sum rounded (within a couple of ulps): the components added from the smallest.
+    pub(crate) fn estimate(&self) -> f64 {
+        self.c[..self.len].iter().sum()
     }
 }
 
