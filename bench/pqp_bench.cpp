@@ -2,11 +2,11 @@
 //
 //   pqp_bench [--models DIR] [--only w1,w2,...] [--reps N] [--quick] [--ours-only] [--threads N]
 //             [--no-verify]
-// Workloads: spheres shells bunny-collide bunny-distance coherent build threads (default: all).
+// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies
+// (default: all). `strategies` times our distance query with every search strategy (ours only).
 // --quick shrinks every workload (for valgrind); --ours-only skips FCL (for profiling ours).
 // --fcl-rss-collide also times FCL's collision on BVHModel<RSS> (very slow); --cube F sets the side
-// of the bunny workloads' offset cube in bunny radii (default 2); --extra-qsize N adds a workload-1
-// row for our distance query with queue size N (the default is PQP's 2).
+// of the bunny workloads' offset cube in bunny radii (default 2).
 //
 // Timing: every query is timed on its own with std::chrono::steady_clock; the pose set is run
 // `reps` times (default 3) and each pose keeps its fastest run (the machine is shared, and the
@@ -72,7 +72,6 @@ struct Options {
     bool verify = true;
     int threads = 0;
     bool fcl_rss_collide = false;  // FCL's RSS collision is ~500x slower than its OBB: off by default
-    int extra_qsize = 0;  // if > 0, workload 1 also runs ours with this queue size
     double cube = 2.0;  // side of the bunny workloads' offset cube, in bunny radii
     bool want(const std::string& w) const { return only.empty() || only.count(w) != 0; }
 };
@@ -314,7 +313,7 @@ struct DistAnswers {
 
 // ---- ours
 
-DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err, int qsize = 2) {
+DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err) {
     DistAnswers a;
     a.d.resize(c.size());
     pqp_distance_result* r = pqp_distance_result_create();
@@ -324,7 +323,7 @@ DistAnswers ours_distance(Case& c, int reps, double rel_err, double abs_err, int
         [&](size_t i) {
             const auto& p = c.poses[i];
             rc |= pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(),
-                               p.second.T.data(), c.ours2.m, rel_err, abs_err, qsize);
+                               p.second.T.data(), c.ours2.m, rel_err, abs_err, 2);
         },
         [&](size_t i) {
             a.d[i] = pqp_distance_result_distance(r);
@@ -710,19 +709,6 @@ void workload_spheres(const Options& o) {
     Case c("spheres", sphere, sphere, poses, !o.ours_only);
     DistAnswers ours;
     run_distance(c, "1 spheres-distance", o, &ours);
-    if (o.extra_qsize > 0) {
-        Row row = g_rows.back();
-        row.query = fmt("distance, ours with qsize %d", o.extra_qsize);
-        const DistAnswers q = ours_distance(c, o.reps, 0.0, 0.0, o.extra_qsize);
-        row.ours_med = median(q.time);
-        row.ours_mean = mean(q.time);
-        row.bv = q.bv;
-        row.tri = q.tri;
-        row.ours_ck = fmt("sum d = %.12f", q.sum());
-        row.agree = compare_distances(c, row.query, "ours-qsize-2", q, ours) == "yes" ? "= qsize 2 answers" : "NO";
-        row.note = "FCL's row is its usual (qsize 2) query";
-        g_rows.push_back(row);
-    }
     // Per-gap medians (ours, and FCL-RSS if run).
     DistAnswers fcl;
     if (!o.ours_only) fcl = fcl_distance(*c.fcl1.rss, *c.fcl2.rss, c, o.reps);
@@ -963,6 +949,89 @@ void workload_coherent(const Options& o) {
     g_rows.push_back(fresh);
 }
 
+// ---- Search strategies (ours only): every pose in order with one result object, so the triangle
+// cache carries from pose to pose as it would in an application.
+
+struct StrategyRow {
+    std::string workload, strategy;
+    size_t poses;
+    double med, mean_, bv, tri, sum;
+};
+std::vector<StrategyRow> g_strategies;
+
+void run_strategies(Case& c, const std::string& workload, int reps) {
+    // Breadth-first cannot prune before it reaches triangle pairs, which on 40,000-triangle models
+    // takes most of the BVTT: it runs on the first few poses only (sums then cover those poses).
+    struct Variant {
+        const char* name;
+        int strategy, qsize;
+    };
+    const size_t bfs_poses = std::min<size_t>(c.size(), 5);
+    const Variant variants[] = {
+        {"auto (default: priority, unbounded queue)", PQP_SEARCH_AUTO, 0},
+        {"priority, unbounded queue", PQP_SEARCH_PRIORITY, 0},
+        {"priority, queue of 32 (PQP's qsize 32)", PQP_SEARCH_PRIORITY, 32},
+        {"depth-first (PQP's default, qsize 2)", PQP_SEARCH_DEPTH_FIRST, 0},
+        {"breadth-first", PQP_SEARCH_BREADTH_FIRST, 0},
+    };
+    double reference = NAN;
+    for (const Variant& v : variants)
+        for (int cache = 1; cache >= 0; --cache) {
+            pqp_search_options opt = pqp_search_options_default();
+            opt.strategy = v.strategy;
+            opt.qsize = v.qsize;
+            opt.triangle_cache = cache;
+            const size_t n = v.strategy == PQP_SEARCH_BREADTH_FIRST ? bfs_poses : c.size();
+            std::vector<double> t(n, std::numeric_limits<double>::infinity());
+            double bv = 0, tri = 0, sum = 0;
+            int rc = PQP_OK;
+            for (int rep = 0; rep < reps; ++rep) {
+                pqp_distance_result* r = pqp_distance_result_create();
+                for (size_t i = 0; i < n; ++i) {
+                    const auto& p = c.poses[i];
+                    const auto t0 = Clock::now();
+                    rc |= pqp_distance_search(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(),
+                                              p.second.T.data(), c.ours2.m, 0.0, 0.0, &opt);
+                    t[i] = std::min(t[i], secs(t0, Clock::now()));
+                    if (rep == 0) {
+                        bv += static_cast<double>(pqp_distance_result_num_bv_tests(r));
+                        tri += static_cast<double>(pqp_distance_result_num_tri_tests(r));
+                        sum += pqp_distance_result_distance(r);
+                    }
+                }
+                pqp_distance_result_destroy(r);
+            }
+            check(rc, "pqp_distance_search");
+            if (std::isnan(reference)) reference = sum;
+            if (n == c.size() && !same_distance(sum, reference))
+                g_notes.push_back(fmt("strategies/%s: %s gives sum d %.12f, not %.12f", workload.c_str(), v.name, sum,
+                                      reference));
+            const double nd = static_cast<double>(n);
+            g_strategies.push_back({workload, std::string(v.name) + (cache ? ", cache" : ", no cache"), n, median(t),
+                                    mean(t), bv / nd, tri / nd, sum});
+        }
+}
+
+void workload_strategies(const Options& o) {
+    {
+        const Mesh sphere = uv_sphere(1.0, kSphereLat, kSphereLon);
+        const auto sp = spheres_poses(o.quick ? 10 : 100);
+        std::vector<std::pair<Pose, Pose>> poses;
+        for (const auto& p : sp) poses.emplace_back(p.p1, p.p2);
+        Case c("spheres", sphere, sphere, poses, false);
+        run_strategies(c, "1 spheres-distance", o.reps);
+    }
+    const Mesh t1 = load_tris(o.models + "/torus1.tris");
+    const Mesh t2 = load_tris(o.models + "/torus2.tris");
+    const auto p1 = load_path(o.models + "/torus1.path");
+    const auto p2 = load_path(o.models + "/torus2.path");
+    std::vector<std::pair<Pose, Pose>> poses;
+    const size_t n = o.quick ? std::min<size_t>(300, p1.size()) : std::min(p1.size(), p2.size());
+    for (size_t k = 0; k < n; ++k) poses.emplace_back(p1[k], p2[k]);
+    Case c("coherent", t1, t2, poses, false);
+    run_strategies(c, "5 coherent", o.reps);
+}
+
 struct BuildRow {
     size_t tris;
     std::string lib;
@@ -1166,6 +1235,14 @@ void report(const Options& o) {
         }
         std::printf("\nload average at the end of the threads workload: %s\n", load_average().c_str());
     }
+    if (!g_strategies.empty()) {
+        std::printf("\n## Search strategies (ours, exact distance, one result object along the poses)\n\n"
+                    "| workload | strategy | poses | median (us) | mean (us) | BV tests/q | tri tests/q | sum d |\n"
+                    "|---|---|---:|---:|---:|---:|---:|---|\n");
+        for (const auto& r : g_strategies)
+            std::printf("| %s | %s | %zu | %.2f | %.2f | %.0f | %.1f | %.12f |\n", r.workload.c_str(),
+                        r.strategy.c_str(), r.poses, r.med * 1e6, r.mean_ * 1e6, r.bv, r.tri, r.sum);
+    }
     if (!g_notes.empty()) {
         std::printf("\n## Notes and disagreements\n\n");
         for (const auto& n : g_notes) std::printf("- %s\n", n.c_str());
@@ -1194,8 +1271,6 @@ Options parse(int argc, char** argv) {
             o.threads = std::atoi(value().c_str());
         } else if (a == "--fcl-rss-collide") {
             o.fcl_rss_collide = true;
-        } else if (a == "--extra-qsize") {
-            o.extra_qsize = std::atoi(value().c_str());
         } else if (a == "--cube") {
             o.cube = std::atof(value().c_str());
         } else if (a == "--quick") {
@@ -1207,7 +1282,7 @@ Options parse(int argc, char** argv) {
         } else {
             die("unknown option " + a +
                 " (see the comment at the top of bench/pqp_bench.cpp; workloads: spheres shells bunny-collide "
-                "bunny-distance coherent build threads)");
+                "bunny-distance coherent build threads strategies)");
         }
     }
     return o;
@@ -1231,6 +1306,7 @@ int main(int argc, char** argv) {
     if (o.want("coherent")) stage("coherent"), workload_coherent(o);
     if (o.want("build")) stage("build"), workload_build(o);
     if (o.want("threads")) stage("threads"), workload_threads(o);
+    if (o.want("strategies")) stage("strategies"), workload_strategies(o);
     report(o);
     return 0;
 }

@@ -335,11 +335,69 @@ static void box_tolerances(void)
     pqp_model_destroy(box);
 }
 
+/* Every search strategy, with and without triangle caching, gives the same exact distance and the
+ * same tolerance verdicts; bad options are refused and leave the result as it was. */
+static void search_strategies(void)
+{
+    static const int strategies[4] = {PQP_SEARCH_AUTO, PQP_SEARCH_DEPTH_FIRST, PQP_SEARCH_BREADTH_FIRST,
+                                      PQP_SEARCH_PRIORITY};
+    pqp_model *box = shapes_unit_box();
+    pqp_distance_result *r = pqp_distance_result_create();
+    pqp_tolerance_result *t = pqp_tolerance_result_create();
+    pqp_search_options o = pqp_search_options_default();
+    const double T2[3] = {2.75, 0.25, -0.5}; /* box 2 spans x in [1.75, 2.75] */
+    int s, cache, q;
+    CHECK(box != NULL && r != NULL && t != NULL);
+    if (!box || !r || !t) return;
+    CHECK_EQ(o.strategy, PQP_SEARCH_AUTO);
+    CHECK_EQ(o.qsize, 0);
+    CHECK_EQ(o.triangle_cache, 1);
+    for (s = 0; s < 4; s++)
+        for (cache = 0; cache < 2; cache++)
+            for (q = 0; q < 3; q++) {
+                o.strategy = strategies[s];
+                o.triangle_cache = cache;
+                o.qsize = q; /* 0: unbounded */
+                CHECK_EQ(pqp_distance_search(r, I3, ZERO3, box, RZ90, T2, box, 0.0, 0.0, &o), PQP_OK);
+                CHECK_NEAR(pqp_distance_result_distance(r), 0.75, 1e-12);
+                check_witnesses(r, I3, ZERO3, RZ90, T2);
+                CHECK_EQ(pqp_tolerance_search(t, I3, ZERO3, box, RZ90, T2, box, 0.8, &o), PQP_OK);
+                CHECK_EQ(pqp_tolerance_result_closer_than_tolerance(t), 1);
+                CHECK_EQ(pqp_tolerance_search(t, I3, ZERO3, box, RZ90, T2, box, 0.7, &o), PQP_OK);
+                CHECK_EQ(pqp_tolerance_result_closer_than_tolerance(t), 0);
+                CHECK(pqp_tolerance_result_distance(t) > 0.7);
+            }
+    /* NULL options: the default search. */
+    CHECK_EQ(pqp_distance_search(r, I3, ZERO3, box, RZ90, T2, box, 0.0, 0.0, NULL), PQP_OK);
+    CHECK_NEAR(pqp_distance_result_distance(r), 0.75, 1e-12);
+    CHECK_EQ(pqp_tolerance_search(t, I3, ZERO3, box, RZ90, T2, box, 0.8, NULL), PQP_OK);
+    CHECK_EQ(pqp_tolerance_result_closer_than_tolerance(t), 1);
+    /* Refused options leave the results as they were. */
+    o = pqp_search_options_default();
+    o.strategy = 4;
+    CHECK_EQ(pqp_distance_search(r, I3, ZERO3, box, I3, ZERO3, box, 0.0, 0.0, &o), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_tolerance_search(t, I3, ZERO3, box, I3, ZERO3, box, 0.8, &o), PQP_ERR_INVALID_ARGUMENT);
+    o = pqp_search_options_default();
+    o.qsize = -1;
+    CHECK_EQ(pqp_distance_search(r, I3, ZERO3, box, I3, ZERO3, box, 0.0, 0.0, &o), PQP_ERR_INVALID_ARGUMENT);
+    o = pqp_search_options_default();
+    o.triangle_cache = 2;
+    CHECK_EQ(pqp_tolerance_search(t, I3, ZERO3, box, I3, ZERO3, box, 0.8, &o), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_NEAR(pqp_distance_result_distance(r), 0.75, 1e-12);
+    CHECK_EQ(pqp_tolerance_result_closer_than_tolerance(t), 1);
+    CHECK_EQ(pqp_distance_search(NULL, I3, ZERO3, box, I3, ZERO3, box, 0.0, 0.0, NULL), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_tolerance_search(t, I3, NULL, box, I3, ZERO3, box, 0.8, NULL), PQP_ERR_NULL_POINTER);
+    pqp_tolerance_result_destroy(t);
+    pqp_distance_result_destroy(r);
+    pqp_model_destroy(box);
+}
+
 int main(void)
 {
     box_distances();
     fence_pairs();
     box_collisions();
     box_tolerances();
+    search_strategies();
     CHECK_DONE("answers");
 }

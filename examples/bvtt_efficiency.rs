@@ -2,19 +2,20 @@
 //!
 //! Regenerates the workload exactly as `bench/workloads.hpp` does (same generator, same seed, same
 //! order of operations, so the same bits), runs the queries as `bench/pqp_bench.cpp` does (one result
-//! object reused across the poses, qsize 2), and compares each query's bounding-volume tests with the
+//! object reused across the poses, the default search), and compares each query's bounding-volume tests with the
 //! minimal BVTT (`pqp::diagnostics`). The printed sum of distances must equal the C++ program's
 //! workload-1 checksum: that confirms both ran the same workload.
 //!
 //! ```text
-//! cargo run --release --example bvtt_efficiency [-- --per-gap N] [--qsize N]
+//! cargo run --release --example bvtt_efficiency [-- --per-gap N] [--pqp-qsize N]
 //! ```
 //!
-//! `--qsize` sets the query's queue size (default 2, PQP's default: depth-first, nearer pair first;
-//! larger values search best-first), to see how the search order changes the work.
+//! `--pqp-qsize N` runs PQP 1.3's search for queue size N instead of the default (2: depth-first,
+//! nearer pair first; larger: a priority queue of N pairs), to see how the search order changes the
+//! work.
 
 use pqp::diagnostics::minimal_bvtt;
-use pqp::{distance_into, DistanceOptions, DistanceResult, Model, Pose};
+use pqp::{distance_into, DistanceOptions, DistanceResult, Model, Pose, Search};
 
 /// The same double as `bench::kPi` (3.14159265358979323846 rounds to it).
 const PI: f64 = std::f64::consts::PI;
@@ -146,7 +147,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let mut per_gap = 100;
-    let mut qsize = 2;
+    let mut search = Search::default();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -156,9 +157,12 @@ fn main() {
                     .and_then(|v| v.parse().ok())
                     .expect("--per-gap N")
             }
-            "--qsize" => qsize = args.next().and_then(|v| v.parse().ok()).expect("--qsize N"),
+            "--pqp-qsize" => {
+                let qsize = args.next().and_then(|v| v.parse().ok());
+                search = Search::pqp(qsize.expect("--pqp-qsize N"))
+            }
             _ => {
-                eprintln!("usage: bvtt_efficiency [--per-gap N] [--qsize N]");
+                eprintln!("usage: bvtt_efficiency [--per-gap N] [--pqp-qsize N]");
                 std::process::exit(2);
             }
         }
@@ -197,7 +201,7 @@ fn main() {
         let mut ratios = Vec::new();
         for (_, p1, p2) in chunk {
             let opts = DistanceOptions {
-                qsize,
+                search,
                 ..DistanceOptions::exact()
             };
             distance_into(&mut result, &s1, p1, &s2, p2, &opts).expect("query runs");

@@ -107,7 +107,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::query::{distance_into, DistanceOptions, DistanceResult};
+    use crate::query::{distance, distance_into, DistanceOptions, DistanceResult, Search};
 
     /// A small deterministic generator (tests only).
     struct Lcg(u64);
@@ -201,7 +201,7 @@ mod tests {
         for (p1, p2) in poses(&mut rng, 25) {
             for qsize in [2, 8] {
                 let opts = DistanceOptions {
-                    qsize,
+                    search: Search::pqp(qsize),
                     ..DistanceOptions::exact()
                 };
                 let mut r = DistanceResult::new();
@@ -216,6 +216,21 @@ mod tests {
                 // The cached pair is tested once before the search starts.
                 assert_eq!(r.stats.tri_tests, m.leaf_pairs_below + 1, "qsize {qsize}");
             }
+        }
+    }
+
+    /// The default search (priority-directed, unbounded queue) expands nodes in increasing order of
+    /// bound, so even from a cold start it does exactly the minimal work.
+    #[test]
+    fn default_search_does_exactly_the_minimal_work() {
+        let mut rng = Lcg(5);
+        let a = blob(&mut rng, 12, 16);
+        let b = blob(&mut rng, 9, 20);
+        for (p1, p2) in poses(&mut rng, 25) {
+            let r = distance(&a, &p1, &b, &p2, &DistanceOptions::exact()).unwrap();
+            let m = minimal_bvtt(&a, &p1, &b, &p2, r.distance).unwrap();
+            assert_eq!(r.stats.bv_tests, m.bound_tests);
+            assert_eq!(r.stats.tri_tests, m.leaf_pairs_below);
         }
     }
 

@@ -50,5 +50,6 @@ pub use math::{Pose, RelPose, Vec3};
 pub use model::Model;
 pub use query::{
     collide, collide_into, distance, distance_into, tolerance, tolerance_into, CollideResult,
-    ContactMode, ContactPair, DistanceOptions, DistanceResult, Stats, ToleranceResult,
+    ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats, Strategy,
+    ToleranceResult,
 };

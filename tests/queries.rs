@@ -6,24 +6,58 @@ mod common;
 use common::{apply, brute, norm, point_tri, sub, Mesh, Rng};
 use pqp::{
     collide, distance, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult,
-    Model, Pose,
+    Model, Pose, Search, Strategy,
 };
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs()) + 1e-12
 }
 
+/// Every search strategy, with and without triangle caching, and PQP's searches for several queue
+/// sizes: all must give the same exact answers.
+fn all_searches() -> Vec<Search> {
+    let mut v = vec![
+        Search::pqp(1),
+        Search::pqp(2),
+        Search::pqp(8),
+        Search::pqp(1000),
+    ];
+    for strategy in [
+        Strategy::Auto,
+        Strategy::DepthFirst,
+        Strategy::BreadthFirst,
+        Strategy::Priority,
+    ] {
+        for triangle_cache in [false, true] {
+            v.push(Search {
+                strategy,
+                qsize: usize::MAX,
+                triangle_cache,
+            });
+        }
+    }
+    v
+}
+
 /// Checks the distance answer of the library against brute force, with its points.
-fn check_distance(a: &Mesh, ma: &Model, pa: &Pose, b: &Mesh, mb: &Model, pb: &Pose, qsize: usize) {
+fn check_distance(
+    a: &Mesh,
+    ma: &Model,
+    pa: &Pose,
+    b: &Mesh,
+    mb: &Model,
+    pb: &Pose,
+    search: Search,
+) {
     let truth = brute(a, pa, b, pb);
     let opts = DistanceOptions {
-        qsize,
+        search,
         ..DistanceOptions::default()
     };
     let r = distance(ma, pa, mb, pb, &opts).unwrap();
     assert!(
         close(r.distance, truth.distance),
-        "distance {} vs brute {} (qsize {qsize})",
+        "distance {} vs brute {} ({search:?})",
         r.distance,
         truth.distance
     );
@@ -78,8 +112,8 @@ fn distance_matches_brute_force_on_random_soups() {
         for k in 0..4 {
             let spread = [0.5, 2.0, 5.0, 50.0][k];
             let (pa, pb) = (rng.pose(spread), rng.pose(spread));
-            for qsize in [1, 2, 8, 1000] {
-                check_distance(&a, &ma, &pa, &b, &mb, &pb, qsize);
+            for search in all_searches() {
+                check_distance(&a, &ma, &pa, &b, &mb, &pb, search);
             }
         }
     }
@@ -99,13 +133,17 @@ fn distance_matches_brute_force_on_spheres_and_tori() {
             let len = norm(dir);
             let off = (2.3 + gap) / len;
             let pb = Pose::new(rng.rotation(), [dir[0] * off, dir[1] * off, dir[2] * off]);
-            check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, 2);
+            for search in all_searches() {
+                check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, search);
+            }
         }
     }
     // Overlapping poses: sphere through the torus.
     for _ in 0..10 {
         let (pa, pb) = (rng.pose(0.3), rng.pose(0.3));
-        check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, 2);
+        for search in all_searches() {
+            check_distance(&sphere, &ms, &pa, &torus, &mt, &pb, search);
+        }
     }
 }
 
@@ -125,19 +163,21 @@ fn approximate_distance_honours_both_bounds() {
             (0.0, 0.01),
             (0.2, 0.02),
         ] {
-            let opts = DistanceOptions {
-                rel_err: rel,
-                abs_err: abs,
-                qsize: 2,
-            };
-            let r = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
-            let slack = 1e-12;
-            assert!(r.distance >= truth - slack, "{} < {truth}", r.distance);
-            assert!(
-                r.distance <= (truth * (1.0 + rel)).min(truth + abs) + slack,
-                "rel {rel} abs {abs}: {} vs {truth}",
-                r.distance
-            );
+            for search in all_searches() {
+                let opts = DistanceOptions {
+                    rel_err: rel,
+                    abs_err: abs,
+                    search,
+                };
+                let r = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+                let slack = 1e-12;
+                assert!(r.distance >= truth - slack, "{} < {truth}", r.distance);
+                assert!(
+                    r.distance <= (truth * (1.0 + rel)).min(truth + abs) + slack,
+                    "rel {rel} abs {abs} {search:?}: {} vs {truth}",
+                    r.distance
+                );
+            }
         }
     }
 }
@@ -150,11 +190,7 @@ fn relative_error_prunes_work() {
     let (ma, mb) = (a.model(), b.model());
     let here = Pose::identity();
     let exact = distance(&ma, &here, &mb, &here, &DistanceOptions::default()).unwrap();
-    let opts = DistanceOptions {
-        rel_err: 0.1,
-        abs_err: f64::INFINITY,
-        qsize: 2,
-    };
+    let opts = DistanceOptions::approximate(0.1, f64::INFINITY);
     let approx = distance(&ma, &here, &mb, &here, &opts).unwrap();
     assert!(approx.distance <= exact.distance * 1.1 + 1e-12);
     assert!(
@@ -179,18 +215,24 @@ fn tolerance_verdict_matches_brute_force() {
                 if (truth - t).abs() < 1e-9 {
                     continue;
                 }
-                let r = tolerance(&ma, &pa, &mb, &pb, t, 2).unwrap();
-                assert_eq!(r.closer_than_tolerance, truth <= t, "t {t} truth {truth}");
-                if r.closer_than_tolerance {
-                    assert!(r.distance <= t && r.distance >= truth - 1e-12);
-                    let p1 = [r.p1.x, r.p1.y, r.p1.z];
-                    let p2 = [r.p2.x, r.p2.y, r.p2.z];
-                    assert!(point_tri(p1, &a.tris[r.id1 as usize]) < 1e-9);
-                    assert!(point_tri(p2, &b.tris[r.id2 as usize]) < 1e-9);
-                    let gap = norm(sub(apply(&pa, p1), apply(&pb, p2)));
-                    assert!((gap - r.distance).abs() < 1e-9);
-                } else {
-                    assert!(r.distance > t && r.distance <= truth + 1e-12);
+                for search in all_searches() {
+                    let r = tolerance(&ma, &pa, &mb, &pb, t, &search).unwrap();
+                    assert_eq!(
+                        r.closer_than_tolerance,
+                        truth <= t,
+                        "t {t} truth {truth} {search:?}"
+                    );
+                    if r.closer_than_tolerance {
+                        assert!(r.distance <= t && r.distance >= truth - 1e-12);
+                        let p1 = [r.p1.x, r.p1.y, r.p1.z];
+                        let p2 = [r.p2.x, r.p2.y, r.p2.z];
+                        assert!(point_tri(p1, &a.tris[r.id1 as usize]) < 1e-9);
+                        assert!(point_tri(p2, &b.tris[r.id2 as usize]) < 1e-9);
+                        let gap = norm(sub(apply(&pa, p1), apply(&pb, p2)));
+                        assert!((gap - r.distance).abs() < 1e-9);
+                    } else {
+                        assert!(r.distance > t && r.distance <= truth + 1e-12);
+                    }
                 }
             }
         }
@@ -204,8 +246,8 @@ fn tolerance_is_cheaper_than_distance() {
     let (ma, mb) = (a.model(), b.model());
     let (pa, pb) = (Pose::identity(), Pose::from_translation([2.05, 0.1, 0.0]));
     let d = distance(&ma, &pa, &mb, &pb, &DistanceOptions::default()).unwrap();
-    let far = tolerance(&ma, &pa, &mb, &pb, 0.01, 2).unwrap();
-    let near = tolerance(&ma, &pa, &mb, &pb, 0.2, 2).unwrap();
+    let far = tolerance(&ma, &pa, &mb, &pb, 0.01, &Search::default()).unwrap();
+    let near = tolerance(&ma, &pa, &mb, &pb, 0.2, &Search::default()).unwrap();
     assert!(!far.closer_than_tolerance && near.closer_than_tolerance);
     assert!(far.stats.bv_tests < d.stats.bv_tests);
     assert!(near.stats.bv_tests < d.stats.bv_tests);
@@ -346,7 +388,7 @@ fn queries_validate_their_arguments() {
     bad = Pose::identity();
     bad.rotation[(1, 2)] = f64::INFINITY;
     assert_eq!(
-        tolerance(&m, &here, &m, &bad, 0.1, 2).unwrap_err(),
+        tolerance(&m, &here, &m, &bad, 0.1, &Search::default()).unwrap_err(),
         pqp::Error::NonFinitePose
     );
     for opts in [
@@ -359,7 +401,10 @@ fn queries_validate_their_arguments() {
             ..Default::default()
         },
         DistanceOptions {
-            qsize: 0,
+            search: Search {
+                qsize: 0,
+                ..Search::default()
+            },
             ..Default::default()
         },
     ] {
@@ -369,11 +414,11 @@ fn queries_validate_their_arguments() {
         );
     }
     assert_eq!(
-        tolerance(&m, &here, &m, &here, -1.0, 2).unwrap_err(),
+        tolerance(&m, &here, &m, &here, -1.0, &Search::default()).unwrap_err(),
         pqp::Error::InvalidArgument
     );
     assert_eq!(
-        tolerance(&m, &here, &m, &here, f64::NAN, 2).unwrap_err(),
+        tolerance(&m, &here, &m, &here, f64::NAN, &Search::default()).unwrap_err(),
         pqp::Error::InvalidArgument
     );
     // A model against itself is a valid query: it touches everywhere.

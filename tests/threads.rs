@@ -3,7 +3,9 @@
 mod common;
 
 use common::{Mesh, Rng};
-use pqp::{collide, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult, Pose};
+use pqp::{
+    collide, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult, Pose, Search,
+};
 use std::sync::Arc;
 
 #[derive(Debug, PartialEq)]
@@ -29,7 +31,7 @@ fn run(ma: &pqp::Model, mb: &pqp::Model, poses: &[(Pose, Pose)]) -> Answers {
         distance_into(&mut dres, ma, pa, mb, pb, &DistanceOptions::default()).unwrap();
         out.distances.push(dres.distance);
         out.verdicts.push(
-            tolerance(ma, pa, mb, pb, 0.05, 2)
+            tolerance(ma, pa, mb, pb, 0.05, &Search::default())
                 .unwrap()
                 .closer_than_tolerance,
         );

@@ -114,6 +114,27 @@
 #define PQP_FIRST_CONTACT 2
 
 /**
+ * Search strategy: the fastest measured for the query (priority-directed for distance, depth-first
+ * for tolerance; the default).
+ */
+#define PQP_SEARCH_AUTO 0
+
+/**
+ * Search strategy: depth-first, nearer pair first (PQP 1.3's search for qsize 1 or 2).
+ */
+#define PQP_SEARCH_DEPTH_FIRST 1
+
+/**
+ * Search strategy: level by level.
+ */
+#define PQP_SEARCH_BREADTH_FIRST 2
+
+/**
+ * Search strategy: priority-directed, nearest pending pair first.
+ */
+#define PQP_SEARCH_PRIORITY 3
+
+/**
  * The answer of pqp_collide (opaque). Reuse one for many queries to reuse its storage.
  */
 typedef struct pqp_collide_result pqp_collide_result;
@@ -150,6 +171,29 @@ typedef struct pqp_contact_pair {
      */
     int id2;
 } pqp_contact_pair;
+
+/**
+ * How pqp_distance_search and pqp_tolerance_search search the bounding-volume test tree. Every
+ * strategy gives the same exact distance; they differ in speed (see BENCHMARKS.md).
+ * pqp_search_options_default fills one with the default, which pqp_distance and pqp_tolerance use.
+ */
+typedef struct pqp_search_options {
+    /**
+     * PQP_SEARCH_AUTO, PQP_SEARCH_DEPTH_FIRST, PQP_SEARCH_BREADTH_FIRST or PQP_SEARCH_PRIORITY.
+     */
+    int strategy;
+    /**
+     * PQP_SEARCH_PRIORITY (and PQP_SEARCH_AUTO when it chooses it) only: the most pending pairs
+     * the queue holds (pairs that do not fit are searched depth-first at once, as PQP 1.3 did);
+     * 0 for unbounded. Must not be negative.
+     */
+    int qsize;
+    /**
+     * 1: start from the closest triangle pair of the last query on the same two models, kept in
+     * the result object (triangle caching); 0: start afresh.
+     */
+    int triangle_cache;
+} pqp_search_options;
 
 #ifdef __cplusplus
 extern "C" {
@@ -421,8 +465,10 @@ void pqp_distance_result_destroy(struct pqp_distance_result *r);
  * @param m2       model 2 (built; may be the same model as m1).
  * @param rel_err  relative error allowed, >= 0.
  * @param abs_err  absolute error allowed, >= 0 (0: exact).
- * @param qsize    search queue size, >= 1 (PQP's default is 2: depth-first, nearer pair first;
- *                 larger values search best-first with that many pending pairs).
+ * @param qsize    PQP's search queue size, >= 1. The search is the default one (for distance,
+ *                 priority-directed with an unbounded queue, and triangle caching), which honours
+ *                 any queue size and visits no more bounding-volume pairs than PQP's search with
+ *                 any; qsize is only checked. pqp_distance_search chooses the search.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
  *         rel_err or abs_err is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a
  *         model is not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger
@@ -441,6 +487,42 @@ int pqp_distance(struct pqp_distance_result *r,
                  double rel_err,
                  double abs_err,
                  int qsize);
+
+/**
+ * As pqp_distance, with the search chosen by options (NULL: the default search).
+ *
+ * @param r        the result to fill (its previous answer is replaced).
+ * @param R1, T1   the pose of model 1.
+ * @param m1       model 1 (built).
+ * @param R2, T2   the pose of model 2.
+ * @param m2       model 2 (built; may be the same model as m1).
+ * @param rel_err  relative error allowed, >= 0.
+ * @param abs_err  absolute error allowed, >= 0 (0: exact).
+ * @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
+ *                 NULL for the default (as pqp_search_options_default gives).
+ * @return PQP_OK, or as pqp_distance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
+ *         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
+ * Thread safety: as pqp_distance.
+ */
+int pqp_distance_search(struct pqp_distance_result *r,
+                        const double *R1,
+                        const double *T1,
+                        const struct pqp_model *m1,
+                        const double *R2,
+                        const double *T2,
+                        const struct pqp_model *m2,
+                        double rel_err,
+                        double abs_err,
+                        const struct pqp_search_options *options);
+
+/**
+ * The default search options: PQP_SEARCH_AUTO (priority-directed for distance, depth-first for
+ * tolerance), unbounded queue, triangle caching (what pqp_distance and pqp_tolerance use).
+ *
+ * @return the options, to adjust and pass to pqp_distance_search or pqp_tolerance_search.
+ * Thread safety: may be called from any thread at any time.
+ */
+struct pqp_search_options pqp_search_options_default(void);
 
 /**
  * The distance the last pqp_distance on r found.
@@ -564,7 +646,8 @@ void pqp_tolerance_result_destroy(struct pqp_tolerance_result *r);
  * @param R2, T2     the pose of model 2.
  * @param m2         model 2 (built; may be the same model as m1).
  * @param tolerance  the distance asked about, >= 0.
- * @param qsize      search queue size, >= 1 (PQP's default is 2), as for pqp_distance.
+ * @param qsize      PQP's search queue size, >= 1, only checked (as for pqp_distance);
+ *                   pqp_tolerance_search chooses the search.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
  *         tolerance is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a model is
  *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150
@@ -582,6 +665,31 @@ int pqp_tolerance(struct pqp_tolerance_result *r,
                   const struct pqp_model *m2,
                   double tolerance,
                   int qsize);
+
+/**
+ * As pqp_tolerance, with the search chosen by options (NULL: the default search).
+ *
+ * @param r          the result to fill (its previous answer is replaced).
+ * @param R1, T1     the pose of model 1.
+ * @param m1         model 1 (built).
+ * @param R2, T2     the pose of model 2.
+ * @param m2         model 2 (built; may be the same model as m1).
+ * @param tolerance  the distance asked about, >= 0.
+ * @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
+ *                 NULL for the default (as pqp_search_options_default gives).
+ * @return PQP_OK, or as pqp_tolerance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
+ *         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
+ * Thread safety: as pqp_tolerance.
+ */
+int pqp_tolerance_search(struct pqp_tolerance_result *r,
+                         const double *R1,
+                         const double *T1,
+                         const struct pqp_model *m1,
+                         const double *R2,
+                         const double *T2,
+                         const struct pqp_model *m2,
+                         double tolerance,
+                         const struct pqp_search_options *options);
 
 /**
  * Whether the last pqp_tolerance on r found the models within the tolerance (distance <=

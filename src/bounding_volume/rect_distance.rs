@@ -20,17 +20,27 @@
 
 use crate::math::{Mat3, Vec3};
 
-/// Distance between two rectangles.
+/// Distance between two rectangles, or a lower bound on it no less than `cutoff` when the distance
+/// is at least `cutoff` (pass `f64::INFINITY` for the exact distance always).
 ///
 /// Rectangle A is `[0, la[0]] x [0, la[1]] x {0}` in its own frame. Rectangle B is
 /// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
 /// columns, the third being its normal) and `t` its corner, both in A's frame. Sides must be `>= 0`.
+///
+/// The cutoff lets a caller that only needs to know "at least `cutoff`" (a search that will prune
+/// such a pair) skip the exact work: the gap between the boxes around each rectangle in the other's
+/// frame often settles it, and the edge searches then need only beat `cutoff`.
 #[inline]
-pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f64 {
+pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2], cutoff: f64) -> f64 {
     // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
     let u: Vec3 = r.column(0) * lb[0];
     let v: Vec3 = r.column(1) * lb[1];
     let qb = [*t, t + u, t + v, t + u + v];
+    let cut2 = cutoff * cutoff;
+    let gap_b = box_gap(&qb, la);
+    if gap_b >= cut2 {
+        return gap_b.sqrt();
+    }
     let rb = [
         offset(&qb[0], la),
         offset(&qb[1], la),
@@ -63,7 +73,13 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f
     if da < db && leads_away(&ra[ia], ia, &ua, &va) {
         return da.sqrt();
     }
-    let mut best = least(db, da);
+    let gap_a = box_gap(&pa, lb);
+    if gap_a >= cut2 {
+        return gap_a.sqrt();
+    }
+    // Below the cutoff the answer is exact; at or above it, any value in [cutoff, distance] will
+    // do, so the edges need only beat the cutoff.
+    let mut best = least(least(db, da), cut2);
 
     // The edges of b against a, then those of a against b.
     best = edge_min(&qb[0], &u, &rb[0], &rb[1], la, best);
@@ -75,6 +91,19 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f
     best = edge_min(&pa[0], &va, &ra[0], &ra[2], lb, best);
     best = edge_min(&pa[1], &va, &ra[1], &ra[3], lb, best);
     best.sqrt()
+}
+
+/// Squared distance between the box around four points and the rectangle `[0, l[0]] x [0, l[1]] x
+/// {0}`: a lower bound on the squared distance between anything spanned by the points and the
+/// rectangle.
+#[inline(always)]
+fn box_gap(q: &[Vec3; 4], l: [f64; 2]) -> f64 {
+    let lo = q[0].inf(&q[1]).inf(&q[2].inf(&q[3]));
+    let hi = q[0].sup(&q[1]).sup(&q[2].sup(&q[3]));
+    let gx = (lo.x - l[0]).max(-hi.x).max(0.0);
+    let gy = (lo.y - l[1]).max(-hi.y).max(0.0);
+    let gz = lo.z.max(-hi.z).max(0.0);
+    gx * gx + gy * gy + gz * gz
 }
 
 /// The smaller of two numbers (no NaN reaches here; cheaper than `f64::min`).
@@ -178,4 +207,54 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
     // g_lo < 0 <= g_hi, so the fraction is in [0, 1].
     let s = s_lo + (s_hi - s_lo) * (-g_lo / (g_hi - g_lo));
     least(best, offset(&(p + d * s), l).norm_squared())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Rotation3, Unit};
+
+    /// SplitMix64, as a source of uniform doubles in [-1, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn f(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// With a cutoff, the answer is the exact distance when that is below the cutoff, and otherwise
+    /// lies between the cutoff and the exact distance: a valid lower bound that a search prunes.
+    #[test]
+    fn cutoff_answers_exactly_below_and_a_bound_above() {
+        let mut rng = Rng(17);
+        let (mut below, mut above) = (0, 0);
+        for k in 0..20000 {
+            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
+            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
+            let spread = [0.1, 1.0, 3.0][k % 3];
+            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * spread;
+            // Some sides zero: segments and points are rectangles too.
+            let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.f().abs() };
+            let la = [side(&mut rng, k % 7 == 0), side(&mut rng, k % 5 == 0)];
+            let lb = [side(&mut rng, k % 11 == 0), side(&mut rng, k % 4 == 0)];
+            let exact = rect_distance(&r, &t, la, lb, f64::INFINITY);
+            let cutoff = exact * (0.5 + rng.f().abs());
+            let got = rect_distance(&r, &t, la, lb, cutoff);
+            if exact < cutoff {
+                below += 1;
+                assert_eq!(got, exact, "case {k}");
+            } else {
+                above += 1;
+                assert!(
+                    got >= cutoff && got <= exact,
+                    "case {k}: {got} {cutoff} {exact}"
+                );
+            }
+        }
+        assert!(below > 5000 && above > 5000, "{below} {above}");
+    }
 }

@@ -175,11 +175,15 @@ impl BoundingVolume for Rss {
 impl DistanceVolume for Rss {
     #[inline]
     fn distance(a: &Self, b: &Self, rel: &RelPose) -> f64 {
+        Rss::distance_below(a, b, rel, f64::INFINITY)
+    }
+
+    #[inline]
+    fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
         // b's rectangle in the frame of a's rectangle: axes A^T rot B, corner A^T (rot ob + trans - oa).
         let m = a.axes.tr_mul(&rel.rot);
         let r = m * b.axes;
         let t = m * b.origin + a.axes.tr_mul(&(rel.trans - a.origin));
-        let d = rect_distance(&r, &t, a.lengths, b.lengths);
         // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         let scale = a.origin.abs().sum()
             + b.origin.abs().sum()
@@ -188,6 +192,16 @@ impl DistanceVolume for Rss {
             + a.lengths[1]
             + b.lengths[0]
             + b.lengths[1];
-        (d - a.radius - b.radius - BOUND_SLACK * scale).max(0.0)
+        let slack = BOUND_SLACK * scale;
+        // The rectangles' distance that makes the bound reach the cutoff, with a second slack so
+        // that a rectangle distance at or above it proves the bound's true value is at least cutoff.
+        let core_cutoff = cutoff + a.radius + b.radius + 2.0 * slack;
+        let d = rect_distance(&r, &t, a.lengths, b.lengths, core_cutoff);
+        let bound = (d - a.radius - b.radius - slack).max(0.0);
+        if d >= core_cutoff {
+            bound.max(cutoff)
+        } else {
+            bound
+        }
     }
 }

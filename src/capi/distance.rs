@@ -5,11 +5,12 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, into_handle, pqp_model, queue_size,
-    read_pose, reset, stat, PQP_ERR_INTERNAL,
+    boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
+    pqp_search_options, read_pose, read_search, reset, stat, PosedModel, DEFAULT_SEARCH_OPTIONS,
+    PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
-use crate::query::{distance_into, DistanceOptions, DistanceResult};
+use crate::query::{distance_into, DistanceOptions, DistanceResult, Search};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -61,8 +62,10 @@ pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result
 /// @param m2       model 2 (built; may be the same model as m1).
 /// @param rel_err  relative error allowed, >= 0.
 /// @param abs_err  absolute error allowed, >= 0 (0: exact).
-/// @param qsize    search queue size, >= 1 (PQP's default is 2: depth-first, nearer pair first;
-///                 larger values search best-first with that many pending pairs).
+/// @param qsize    PQP's search queue size, >= 1. The search is the default one (for distance,
+///                 priority-directed with an unbounded queue, and triangle caching), which honours
+///                 any queue size and visits no more bounding-volume pairs than PQP's search with
+///                 any; qsize is only checked. pqp_distance_search chooses the search.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
 ///         rel_err or abs_err is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a
 ///         model is not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger
@@ -83,25 +86,100 @@ pub unsafe extern "C" fn pqp_distance(
     abs_err: f64,
     qsize: c_int,
 ) -> c_int {
-    let body = || -> Result<(), Error> {
-        let result = deref_mut(r)?;
-        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-        let options = DistanceOptions {
-            rel_err,
-            abs_err,
-            qsize: queue_size(qsize)?,
-        };
-        distance_into(
-            &mut result.result,
-            &m1.model,
-            &pose1,
-            &m2.model,
-            &pose2,
-            &options,
-        )
+    boundary(
+        PQP_ERR_INTERNAL,
+        || reset(r),
+        || {
+            code(distance_with(
+                r,
+                (R1, T1, m1),
+                (R2, T2, m2),
+                rel_err,
+                abs_err,
+                default_search(qsize),
+            ))
+        },
+    )
+}
+
+/// As pqp_distance, with the search chosen by options (NULL: the default search).
+///
+/// @param r        the result to fill (its previous answer is replaced).
+/// @param R1, T1   the pose of model 1.
+/// @param m1       model 1 (built).
+/// @param R2, T2   the pose of model 2.
+/// @param m2       model 2 (built; may be the same model as m1).
+/// @param rel_err  relative error allowed, >= 0.
+/// @param abs_err  absolute error allowed, >= 0 (0: exact).
+/// @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
+///                 NULL for the default (as pqp_search_options_default gives).
+/// @return PQP_OK, or as pqp_distance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
+///         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
+/// Thread safety: as pqp_distance.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_search(
+    r: *mut pqp_distance_result,
+    R1: *const f64,
+    T1: *const f64,
+    m1: *const pqp_model,
+    R2: *const f64,
+    T2: *const f64,
+    m2: *const pqp_model,
+    rel_err: f64,
+    abs_err: f64,
+    options: *const pqp_search_options,
+) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || reset(r),
+        || {
+            code(distance_with(
+                r,
+                (R1, T1, m1),
+                (R2, T2, m2),
+                rel_err,
+                abs_err,
+                read_search(options),
+            ))
+        },
+    )
+}
+
+/// The body of pqp_distance and pqp_distance_search.
+unsafe fn distance_with(
+    r: *mut pqp_distance_result,
+    (R1, T1, m1): PosedModel,
+    (R2, T2, m2): PosedModel,
+    rel_err: f64,
+    abs_err: f64,
+    search: Result<Search, Error>,
+) -> Result<(), Error> {
+    let result = deref_mut(r)?;
+    let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
+    let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
+    let options = DistanceOptions {
+        rel_err,
+        abs_err,
+        search: search?,
     };
-    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    distance_into(
+        &mut result.result,
+        &m1.model,
+        &pose1,
+        &m2.model,
+        &pose2,
+        &options,
+    )
+}
+
+/// The default search options: PQP_SEARCH_AUTO (priority-directed for distance, depth-first for
+/// tolerance), unbounded queue, triangle caching (what pqp_distance and pqp_tolerance use).
+///
+/// @return the options, to adjust and pass to pqp_distance_search or pqp_tolerance_search.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub extern "C" fn pqp_search_options_default() -> pqp_search_options {
+    boundary(DEFAULT_SEARCH_OPTIONS, || {}, || DEFAULT_SEARCH_OPTIONS)
 }
 
 /// The distance the last pqp_distance on r found.

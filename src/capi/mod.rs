@@ -43,7 +43,7 @@ pub use tolerance::*;
 
 use crate::error::Error;
 use crate::math::Pose;
-use crate::query::Stats;
+use crate::query::{Search, Stats, Strategy};
 use std::cell::Cell;
 use std::ffi::c_int;
 use std::panic::{self, AssertUnwindSafe};
@@ -78,6 +78,32 @@ pub const PQP_ERR_INTERNAL: c_int = -10;
 pub const PQP_ALL_CONTACTS: c_int = 1;
 /// Collision flag: stop at the first colliding triangle pair found.
 pub const PQP_FIRST_CONTACT: c_int = 2;
+/// Search strategy: the fastest measured for the query (priority-directed for distance, depth-first
+/// for tolerance; the default).
+pub const PQP_SEARCH_AUTO: c_int = 0;
+/// Search strategy: depth-first, nearer pair first (PQP 1.3's search for qsize 1 or 2).
+pub const PQP_SEARCH_DEPTH_FIRST: c_int = 1;
+/// Search strategy: level by level.
+pub const PQP_SEARCH_BREADTH_FIRST: c_int = 2;
+/// Search strategy: priority-directed, nearest pending pair first.
+pub const PQP_SEARCH_PRIORITY: c_int = 3;
+
+/// How pqp_distance_search and pqp_tolerance_search search the bounding-volume test tree. Every
+/// strategy gives the same exact distance; they differ in speed (see BENCHMARKS.md).
+/// pqp_search_options_default fills one with the default, which pqp_distance and pqp_tolerance use.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct pqp_search_options {
+    /// PQP_SEARCH_AUTO, PQP_SEARCH_DEPTH_FIRST, PQP_SEARCH_BREADTH_FIRST or PQP_SEARCH_PRIORITY.
+    pub strategy: c_int,
+    /// PQP_SEARCH_PRIORITY (and PQP_SEARCH_AUTO when it chooses it) only: the most pending pairs
+    /// the queue holds (pairs that do not fit are searched depth-first at once, as PQP 1.3 did);
+    /// 0 for unbounded. Must not be negative.
+    pub qsize: c_int,
+    /// 1: start from the closest triangle pair of the last query on the same two models, kept in
+    /// the result object (triangle caching); 0: start afresh.
+    pub triangle_cache: c_int,
+}
 
 /// The code the C ABI returns for `r`.
 pub(crate) fn code(r: Result<(), Error>) -> c_int {
@@ -215,12 +241,55 @@ pub(crate) unsafe fn read_pose(r: *const f64, t: *const f64) -> Result<Pose, Err
     ))
 }
 
-/// A query's queue size from C: at least 1.
-pub(crate) fn queue_size(qsize: c_int) -> Result<usize, Error> {
-    match usize::try_from(qsize) {
-        Ok(q) if q >= 1 => Ok(q),
-        _ => Err(Error::InvalidArgument),
+/// What pqp_search_options_default gives.
+pub(crate) const DEFAULT_SEARCH_OPTIONS: pqp_search_options = pqp_search_options {
+    strategy: PQP_SEARCH_AUTO,
+    qsize: 0,
+    triangle_cache: 1,
+};
+
+/// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
+pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
+
+/// The search of pqp_distance and pqp_tolerance, given PQP's queue size (at least 1). The default
+/// search keeps an unbounded queue, so it honours any queue size; the size is only checked.
+pub(crate) fn default_search(qsize: c_int) -> Result<Search, Error> {
+    if qsize >= 1 {
+        Ok(Search::default())
+    } else {
+        Err(Error::InvalidArgument)
     }
+}
+
+/// A search from C's options; NULL means the default search.
+///
+/// # Safety
+/// `o` is NULL or points to a `pqp_search_options`.
+pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search, Error> {
+    let Some(o) = o.as_ref() else {
+        return Ok(Search::default());
+    };
+    let strategy = match o.strategy {
+        PQP_SEARCH_AUTO => Strategy::Auto,
+        PQP_SEARCH_DEPTH_FIRST => Strategy::DepthFirst,
+        PQP_SEARCH_BREADTH_FIRST => Strategy::BreadthFirst,
+        PQP_SEARCH_PRIORITY => Strategy::Priority,
+        _ => return Err(Error::InvalidArgument),
+    };
+    let qsize = match o.qsize {
+        0 => usize::MAX,
+        q => usize::try_from(q).map_err(|_| Error::InvalidArgument)?,
+    };
+    let triangle_cache = match o.triangle_cache {
+        0 => false,
+        1 => true,
+        _ => return Err(Error::InvalidArgument),
+    };
+    Ok(Search {
+        strategy,
+        qsize,
+        triangle_cache,
+    })
 }
 
 /// Resets a result to its freshly created state after an internal fault, so that C never sees a

@@ -5,11 +5,11 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, into_handle, pqp_model, queue_size,
-    read_pose, reset, stat, PQP_ERR_INTERNAL,
+    boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
+    pqp_search_options, read_pose, read_search, reset, stat, PosedModel, PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
-use crate::query::{tolerance_into, ToleranceResult};
+use crate::query::{tolerance_into, Search, ToleranceResult};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -56,7 +56,8 @@ pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_resu
 /// @param R2, T2     the pose of model 2.
 /// @param m2         model 2 (built; may be the same model as m1).
 /// @param tolerance  the distance asked about, >= 0.
-/// @param qsize      search queue size, >= 1 (PQP's default is 2), as for pqp_distance.
+/// @param qsize      PQP's search queue size, >= 1, only checked (as for pqp_distance);
+///                   pqp_tolerance_search chooses the search.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
 ///         tolerance is negative or NaN, or qsize < 1; PQP_ERR_UNPROCESSED_MODEL if a model is
 ///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150
@@ -76,22 +77,81 @@ pub unsafe extern "C" fn pqp_tolerance(
     tolerance: f64,
     qsize: c_int,
 ) -> c_int {
-    let body = || -> Result<(), Error> {
-        let result = deref_mut(r)?;
-        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-        let qsize = queue_size(qsize)?;
-        tolerance_into(
-            &mut result.result,
-            &m1.model,
-            &pose1,
-            &m2.model,
-            &pose2,
-            tolerance,
-            qsize,
-        )
-    };
-    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    boundary(
+        PQP_ERR_INTERNAL,
+        || reset(r),
+        || {
+            code(tolerance_with(
+                r,
+                (R1, T1, m1),
+                (R2, T2, m2),
+                tolerance,
+                default_search(qsize),
+            ))
+        },
+    )
+}
+
+/// As pqp_tolerance, with the search chosen by options (NULL: the default search).
+///
+/// @param r          the result to fill (its previous answer is replaced).
+/// @param R1, T1     the pose of model 1.
+/// @param m1         model 1 (built).
+/// @param R2, T2     the pose of model 2.
+/// @param m2         model 2 (built; may be the same model as m1).
+/// @param tolerance  the distance asked about, >= 0.
+/// @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
+///                 NULL for the default (as pqp_search_options_default gives).
+/// @return PQP_OK, or as pqp_tolerance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
+///         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
+/// Thread safety: as pqp_tolerance.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_search(
+    r: *mut pqp_tolerance_result,
+    R1: *const f64,
+    T1: *const f64,
+    m1: *const pqp_model,
+    R2: *const f64,
+    T2: *const f64,
+    m2: *const pqp_model,
+    tolerance: f64,
+    options: *const pqp_search_options,
+) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || reset(r),
+        || {
+            code(tolerance_with(
+                r,
+                (R1, T1, m1),
+                (R2, T2, m2),
+                tolerance,
+                read_search(options),
+            ))
+        },
+    )
+}
+
+/// The body of pqp_tolerance and pqp_tolerance_search.
+unsafe fn tolerance_with(
+    r: *mut pqp_tolerance_result,
+    (R1, T1, m1): PosedModel,
+    (R2, T2, m2): PosedModel,
+    tolerance: f64,
+    search: Result<Search, Error>,
+) -> Result<(), Error> {
+    let result = deref_mut(r)?;
+    let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
+    let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
+    tolerance_into(
+        &mut result.result,
+        &m1.model,
+        &pose1,
+        &m2.model,
+        &pose2,
+        tolerance,
+        &search?,
+    )
 }
 
 /// Whether the last pqp_tolerance on r found the models within the tolerance (distance <=

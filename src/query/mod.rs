@@ -8,11 +8,13 @@
 
 mod collide;
 mod distance;
+mod search;
 mod tolerance;
 mod traversal;
 
 pub use collide::{collide, collide_into, CollideResult, ContactMode, ContactPair};
 pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
+pub use search::{Search, Strategy};
 pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
 
 use crate::bvh::Bvh;
@@ -51,10 +53,16 @@ impl TriCache {
         }
     }
 
-    /// The cached pair, if it belongs to these two models.
-    fn pair_for(cache: &Option<TriCache>, m1: &Model, m2: &Model) -> Option<(usize, usize)> {
+    /// Where a search starts: the cached pair, if the search uses triangle caching and the pair
+    /// belongs to these two models.
+    fn start_pair(
+        cache: &Option<TriCache>,
+        m1: &Model,
+        m2: &Model,
+        search: &Search,
+    ) -> Option<(usize, usize)> {
         cache
-            .filter(|c| c.uid1 == m1.uid() && c.uid2 == m2.uid())
+            .filter(|c| search.triangle_cache && c.uid1 == m1.uid() && c.uid2 == m2.uid())
             .map(|c| (c.tri1 as usize, c.tri2 as usize))
     }
 }

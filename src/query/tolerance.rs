@@ -1,6 +1,6 @@
 //! Tolerance: are two posed models within distance `t` of each other?
 
-use super::distance::ClosestSearch;
+use super::search::{ClosestSearch, Search, Strategy};
 use super::{prepare, Stats, TriCache};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
@@ -59,18 +59,18 @@ impl ToleranceResult {
 /// Whether `m1` at `pose1` and `m2` at `pose2` are within `tolerance` (>= 0) of each other.
 ///
 /// It stops at the first triangle pair within the tolerance and prunes every pair of volumes farther
-/// apart than it, so it is cheaper than a distance query. `qsize` is as in [`DistanceOptions`].
-///
-/// [`DistanceOptions`]: crate::DistanceOptions
+/// apart than it, so it is cheaper than a distance query. `search` is as for a distance query
+/// (`&Search::default()` unless comparing strategies).
 ///
 /// ```
-/// use pqp::{tolerance, Model, Pose};
+/// use pqp::{tolerance, Model, Pose, Search};
 /// let tri = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0);
 /// let a = Model::from_triangles([tri]).unwrap();
 /// let b = Model::from_triangles([tri]).unwrap();
 /// let near = Pose::from_translation([0.0, 0.0, 0.5]);
-/// assert!(tolerance(&a, &Pose::identity(), &b, &near, 0.6, 2).unwrap().closer_than_tolerance);
-/// assert!(!tolerance(&a, &Pose::identity(), &b, &near, 0.4, 2).unwrap().closer_than_tolerance);
+/// let search = Search::default();
+/// assert!(tolerance(&a, &Pose::identity(), &b, &near, 0.6, &search).unwrap().closer_than_tolerance);
+/// assert!(!tolerance(&a, &Pose::identity(), &b, &near, 0.4, &search).unwrap().closer_than_tolerance);
 /// ```
 pub fn tolerance(
     m1: &Model,
@@ -78,10 +78,10 @@ pub fn tolerance(
     m2: &Model,
     pose2: &Pose,
     tolerance: f64,
-    qsize: usize,
+    search: &Search,
 ) -> Result<ToleranceResult, Error> {
     let mut r = ToleranceResult::new();
-    tolerance_into(&mut r, m1, pose1, m2, pose2, tolerance, qsize)?;
+    tolerance_into(&mut r, m1, pose1, m2, pose2, tolerance, search)?;
     Ok(r)
 }
 
@@ -94,18 +94,28 @@ pub fn tolerance_into(
     m2: &Model,
     pose2: &Pose,
     tolerance: f64,
-    qsize: usize,
+    search: &Search,
 ) -> Result<(), Error> {
     let start = Instant::now();
-    if tolerance.is_nan() || tolerance < 0.0 || qsize < 1 {
+    if tolerance.is_nan() || tolerance < 0.0 {
         return Err(Error::InvalidArgument);
     }
+    search.validate()?;
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
-    let mut search = ClosestSearch::new(b1, b2, rel, TriCache::pair_for(&result.cache, m1, m2));
-    // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair.
+    let start_pair = TriCache::start_pair(&result.cache, m1, m2, search);
+    let options = search;
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair);
+    // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair:
+    // the cutoff is the least bound above the tolerance, or the best distance if smaller.
+    let above = if tolerance < f64::INFINITY {
+        f64::from_bits(tolerance.to_bits() + 1)
+    } else {
+        tolerance
+    };
     search.run(
-        qsize,
-        |bound, d| bound > tolerance || bound >= d,
+        options,
+        Strategy::DepthFirst,
+        |d| d.min(above),
         |d| d <= tolerance,
     );
     let best = search.best;
@@ -125,8 +135,10 @@ pub fn tolerance_into(
         result.p2 = Vec3::zeros();
         result.id1 = -1;
         result.id2 = -1;
-        // The nearest pair seen is the best start for the next query.
-        result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
+        // The nearest pair seen, if any was tested, is the best start for the next query.
+        if best.d.is_finite() {
+            result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
+        }
     }
     result.stats.query_time_secs = start.elapsed().as_secs_f64();
     Ok(())

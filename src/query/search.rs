@@ -1,0 +1,383 @@
+//! The search of the bounding volume test tree (BVTT) for a closest triangle pair, shared by the
+//! distance and tolerance queries, and the strategies it can follow.
+//!
+//! Every strategy visits a BVTT node only while its lower bound could still improve the answer, so
+//! all of them return the same exact distance; they differ in the order of the visits, hence in how
+//! soon a good answer prunes the rest. A priority-directed search with an unbounded queue expands
+//! nodes in increasing order of bound, so it expands no node whose bound is above the final distance:
+//! it does the least work any search with these volumes can do (the minimal BVTT).
+
+use super::traversal::{descend_first, NodePair, PairStack};
+use super::Stats;
+use crate::bounding_volume::DistanceVolume;
+use crate::bvh::Bvh;
+use crate::error::Error;
+use crate::geometry::{tri_distance, Tri};
+use crate::math::{RelPose, Vec3};
+use std::cell::RefCell;
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, VecDeque};
+
+/// The order in which a search visits the BVTT.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// The fastest measured for the query (BENCHMARKS.md): [`Priority`](Strategy::Priority) for
+    /// distance, which then expands no more nodes than any search can; [`DepthFirst`](Strategy::DepthFirst)
+    /// for tolerance, which stops at the first pair within the tolerance and so wants to reach
+    /// triangle pairs soon.
+    Auto,
+    /// Depth-first, nearer child first: PQP 1.3's search for a queue size of 1 or 2.
+    DepthFirst,
+    /// Level by level (first in, first out).
+    BreadthFirst,
+    /// Priority-directed: pending pairs in a queue ordered by bound, the nearest expanded first. The
+    /// queue holds at most [`Search::qsize`] pairs; a pair that does not fit is searched depth-first
+    /// at once (PQP 1.3's search for a queue size above 2).
+    Priority,
+}
+
+/// How a distance or tolerance query searches.
+///
+/// The default, [`Strategy::Auto`] with an unbounded queue and triangle caching, was chosen from
+/// the measurements in BENCHMARKS.md: it does the least bounding-volume work for distance, reaches an
+/// answer soonest for tolerance, and caching makes coherent motion cheap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Search {
+    /// The visiting order.
+    pub strategy: Strategy,
+    /// [`Strategy::Priority`] (and `Auto` when it chooses it) only: the most pairs the queue holds
+    /// (>= 1; `usize::MAX`: unbounded).
+    pub qsize: usize,
+    /// Start from the closest triangle pair of the last query on the same two models (kept in the
+    /// result), so that under coherent motion the first answer is already nearly the final one.
+    pub triangle_cache: bool,
+}
+
+impl Default for Search {
+    fn default() -> Self {
+        Search {
+            strategy: Strategy::Auto,
+            qsize: usize::MAX,
+            triangle_cache: true,
+        }
+    }
+}
+
+impl Search {
+    /// PQP 1.3's own search for its queue size `qsize`: depth-first for 1 or 2, else a priority
+    /// queue of `qsize` pairs; with triangle caching.
+    pub fn pqp(qsize: usize) -> Search {
+        Search {
+            strategy: if qsize <= 2 {
+                Strategy::DepthFirst
+            } else {
+                Strategy::Priority
+            },
+            qsize: qsize.max(1),
+            triangle_cache: true,
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        if self.qsize >= 1 {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument)
+        }
+    }
+}
+
+/// The closest triangle pair found so far, with its points in model 1's frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Best {
+    pub d: f64,
+    pub p: Vec3,
+    pub q: Vec3,
+    pub ta: usize,
+    pub tb: usize,
+}
+
+/// A search of the BVTT of two hierarchies for their closest triangle pair. The distance and
+/// tolerance queries differ only in when they prune and when they stop.
+pub(crate) struct ClosestSearch<'a> {
+    b1: &'a Bvh,
+    b2: &'a Bvh,
+    rel: RelPose,
+    pub best: Best,
+    pub stats: Stats,
+    /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
+    pub pruned_min: f64,
+}
+
+impl<'a> ClosestSearch<'a> {
+    /// A search whose first answer is the given triangle pair (the cached one), if any; otherwise
+    /// it starts with no answer (distance infinite).
+    pub fn new(b1: &'a Bvh, b2: &'a Bvh, rel: RelPose, start: Option<(usize, usize)>) -> Self {
+        let mut s = ClosestSearch {
+            b1,
+            b2,
+            rel,
+            best: Best {
+                d: f64::INFINITY,
+                p: Vec3::zeros(),
+                q: Vec3::zeros(),
+                ta: 0,
+                tb: 0,
+            },
+            stats: Stats::default(),
+            pruned_min: f64::INFINITY,
+        };
+        if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.tris.len() && b < b2.tris.len()) {
+            s.test_triangles(ta, tb);
+        }
+        s
+    }
+
+    fn test_triangles(&mut self, ta: usize, tb: usize) {
+        self.stats.tri_tests += 1;
+        let t2 = &self.b2.tris[tb];
+        let moved: Tri = [
+            self.rel.apply(&t2[0]),
+            self.rel.apply(&t2[1]),
+            self.rel.apply(&t2[2]),
+        ];
+        let c = tri_distance(&self.b1.tris[ta], &moved);
+        if c.distance < self.best.d {
+            self.best = Best {
+                d: c.distance,
+                p: c.p,
+                q: c.q,
+                ta,
+                tb,
+            };
+        }
+    }
+
+    /// The lower bound of a BVTT node: exact below `cutoff`, at least `cutoff` otherwise.
+    fn bound(&mut self, a: u32, b: u32, cutoff: f64) -> f64 {
+        self.stats.bv_tests += 1;
+        DistanceVolume::distance_below(
+            &self.b1.nodes[a as usize].rss,
+            &self.b2.nodes[b as usize].rss,
+            &self.rel,
+            cutoff,
+        )
+    }
+
+    /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
+    /// their bounds (exact below `cutoff`), nearer first.
+    #[inline]
+    fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
+        let na = &self.b1.nodes[p.a as usize];
+        let nb = &self.b2.nodes[p.b as usize];
+        let (c1, c2) = if descend_first(na, nb, &na.rss, &nb.rss) {
+            let Some(ta) = na.leaf_triangle() else {
+                let c = na.first_child() as u32;
+                return Some(self.bounded_pair((c, p.b), (c + 1, p.b), cutoff));
+            };
+            // Both are leaves (a leaf is descended only when the other is one too).
+            let tb = nb.leaf_triangle().unwrap_or_default();
+            self.test_triangles(ta, tb);
+            return None;
+        } else {
+            let c = nb.first_child() as u32;
+            ((p.a, c), (p.a, c + 1))
+        };
+        Some(self.bounded_pair(c1, c2, cutoff))
+    }
+
+    #[inline]
+    fn bounded_pair(&mut self, c1: (u32, u32), c2: (u32, u32), cutoff: f64) -> [NodePair; 2] {
+        let x = NodePair {
+            a: c1.0,
+            b: c1.1,
+            bound: self.bound(c1.0, c1.1, cutoff),
+        };
+        let y = NodePair {
+            a: c2.0,
+            b: c2.1,
+            bound: self.bound(c2.0, c2.1, cutoff),
+        };
+        if y.bound < x.bound {
+            [y, x]
+        } else {
+            [x, y]
+        }
+    }
+
+    /// Runs the search; `Auto` runs as `auto` (the caller's query knows which is best for it).
+    /// `cutoff(best)` is the least bound of a BVTT node that cannot improve the
+    /// answer `best` enough to be worth visiting (nondecreasing in `best`): such nodes are pruned.
+    /// `stop(best)` ends the search early.
+    pub fn run(
+        &mut self,
+        search: &Search,
+        auto: Strategy,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+    ) {
+        if stop(self.best.d) {
+            return;
+        }
+        let root = NodePair {
+            a: 0,
+            b: 0,
+            bound: self.bound(0, 0, cutoff(self.best.d)),
+        };
+        let strategy = match search.strategy {
+            Strategy::Auto => auto,
+            s => s,
+        };
+        match strategy {
+            Strategy::Auto | Strategy::DepthFirst => {
+                self.depth_first(root, cutoff, stop);
+            }
+            Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
+            Strategy::Priority => self.priority(root, search.qsize, cutoff, stop),
+        }
+    }
+
+    /// Notes a pruned node; its bound, like every bound, is a lower bound on what lies below it.
+    #[inline]
+    fn pruned(&mut self, bound: f64) {
+        self.pruned_min = self.pruned_min.min(bound);
+    }
+
+    /// Depth-first, nearer child first. Returns whether `stop` ended the search.
+    fn depth_first(
+        &mut self,
+        root: NodePair,
+        cutoff: impl Fn(f64) -> f64,
+        stop: impl Fn(f64) -> bool,
+    ) -> bool {
+        let mut stack = PairStack::new();
+        stack.push(root);
+        while let Some(p) = stack.pop() {
+            let cut = cutoff(self.best.d);
+            if p.bound >= cut {
+                self.pruned(p.bound);
+                continue;
+            }
+            if let Some([near, far]) = self.visit(&p, cut) {
+                stack.push(far);
+                stack.push(near);
+            } else if stop(self.best.d) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Level by level, through a first-in first-out queue.
+    fn breadth_first(
+        &mut self,
+        root: NodePair,
+        cutoff: impl Fn(f64) -> f64,
+        stop: impl Fn(f64) -> bool,
+    ) {
+        thread_local! {
+            static QUEUE: RefCell<VecDeque<NodePair>> = const { RefCell::new(VecDeque::new()) };
+        }
+        QUEUE.with(|q| {
+            let mut queue = q.take();
+            queue.clear();
+            queue.push_back(root);
+            while let Some(p) = queue.pop_front() {
+                let cut = cutoff(self.best.d);
+                if p.bound >= cut {
+                    self.pruned(p.bound);
+                    continue;
+                }
+                match self.visit(&p, cut) {
+                    Some(children) => queue.extend(children),
+                    None if stop(self.best.d) => break,
+                    None => {}
+                }
+            }
+            // Pairs left behind by a stop are unvisited: their bounds still bound what they hold.
+            for p in queue.drain(..) {
+                self.pruned_min = self.pruned_min.min(p.bound);
+            }
+            q.replace(queue);
+        });
+    }
+
+    /// Priority-directed: a queue of up to `qsize` BVTT nodes ordered by bound; a node that does not
+    /// fit is searched depth-first at once.
+    ///
+    /// After expanding a node, its nearer child goes on at once without passing through the queue
+    /// when no queued node has a smaller bound: it is the one the queue would give next anyway, so
+    /// the order is the same and half the queue operations are saved.
+    fn priority(
+        &mut self,
+        root: NodePair,
+        qsize: usize,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+    ) {
+        thread_local! {
+            static QUEUE: RefCell<BinaryHeap<ByBound>> = const { RefCell::new(BinaryHeap::new()) };
+        }
+        QUEUE.with(|q| {
+            let mut heap = q.take();
+            heap.clear();
+            let mut next = Some(root);
+            'search: while let Some(p) = next.take().or_else(|| heap.pop().map(|b| b.0)) {
+                let cut = cutoff(self.best.d);
+                if p.bound >= cut {
+                    // Every queued node has a bound at least this large: all are pruned.
+                    self.pruned(p.bound);
+                    break;
+                }
+                let Some([near, far]) = self.visit(&p, cut) else {
+                    if stop(self.best.d) {
+                        break;
+                    }
+                    continue;
+                };
+                // The farther child waits in the queue; the nearer goes on at once if it is the
+                // nearest pending node, else waits too.
+                let near_next = heap.peek().map_or(true, |top| top.0.bound >= near.bound);
+                for (c, go_on) in [(far, false), (near, near_next)] {
+                    if c.bound >= cutoff(self.best.d) {
+                        // Pruned now, pruned later: the answer only improves.
+                        self.pruned(c.bound);
+                    } else if go_on {
+                        next = Some(c);
+                    } else if heap.len() < qsize {
+                        heap.push(ByBound(c));
+                    } else if self.depth_first(c, cutoff, stop) {
+                        heap.clear();
+                        break 'search;
+                    }
+                }
+            }
+            if let Some(p) = next.or_else(|| heap.peek().map(|b| b.0)) {
+                // Left behind by a stop: the smallest bound among them bounds them all.
+                self.pruned(p.bound);
+            }
+            heap.clear();
+            q.replace(heap);
+        });
+    }
+}
+
+/// Orders BVTT nodes so that `BinaryHeap` pops the smallest bound first.
+struct ByBound(NodePair);
+
+impl PartialEq for ByBound {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.bound.total_cmp(&other.0.bound) == Ordering::Equal
+    }
+}
+impl Eq for ByBound {}
+impl PartialOrd for ByBound {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for ByBound {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.bound.total_cmp(&self.0.bound)
+    }
+}
