@@ -245,8 +245,8 @@ impl ConvexModel {
     /// input point, see [`vertex_source`](ConvexModel::vertex_source)).
     ///
     /// Errors: `NonFiniteCoordinate` for a NaN, infinite or huge (> `MAX_COORDINATE`) coordinate;
-    /// `InvalidArgument` when the points do not span a volume (fewer than four distinct points, or
-    /// all collinear or coplanar).
+    /// `DegeneratePoints` when the points do not span a volume (fewer than four distinct points, or
+    /// all collinear or coplanar, or none); `InvalidArgument` for more than 2^30 points.
     ///
     /// ```
     /// use pqp::convex::ConvexModel;
@@ -290,7 +290,11 @@ impl ConvexModel {
     /// instead). Coplanar neighbouring faces are merged and vertices that are then not corners are
     /// dropped, as in `from_points`.
     ///
-    /// Errors: `NonFiniteCoordinate` for a bad coordinate, `InvalidArgument` for anything else.
+    /// Errors: `NonFiniteCoordinate` for a bad coordinate; `InvalidArgument` when the arrays are
+    /// malformed (an index out of range, a count below 3, counts not summing to the number of
+    /// indices, more than 2^30 vertices); `InvalidConvexMesh` when they describe something other
+    /// than a closed convex polyhedron (open, not an oriented sphere, a face not planar or not
+    /// strictly convex, an unused vertex, a vertex above a face, flat).
     pub fn from_polygons(
         vertices: &[[f64; 3]],
         counts: &[u32],
@@ -298,12 +302,16 @@ impl ConvexModel {
     ) -> Result<ConvexModel, Error> {
         let pts = import_points(vertices)?;
         let nv = pts.len();
-        if nv < 4 || counts.len() < 4 {
+        // Malformed arrays first (u64: the sum of u32 counts cannot overflow).
+        let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+        if total != indices.len() as u64
+            || counts.iter().any(|&c| c < 3)
+            || indices.iter().any(|&i| i as usize >= nv)
+        {
             return Err(Error::InvalidArgument);
         }
-        let total: usize = counts.iter().map(|&c| c as usize).sum();
-        if total != indices.len() || indices.iter().any(|&i| i as usize >= nv) {
-            return Err(Error::InvalidArgument);
+        if nv < 4 || counts.len() < 4 {
+            return Err(Error::InvalidConvexMesh);
         }
         let sp = scaled(&pts);
         let p = |x: u32| &sp[x as usize];
@@ -312,9 +320,6 @@ impl ConvexModel {
         let mut at = 0usize;
         for &c in counts {
             let c = c as usize;
-            if c < 3 {
-                return Err(Error::InvalidArgument);
-            }
             let f = &indices[at..at + c];
             at += c;
             let (i, j, _) = projection_axes(&newell(&sp, f));
@@ -322,7 +327,7 @@ impl ConvexModel {
             for k in 0..c {
                 let (a, b) = (f[k], f[(k + 1) % c]);
                 if a == b || f[..k].contains(&a) {
-                    return Err(Error::InvalidArgument);
+                    return Err(Error::InvalidConvexMesh);
                 }
                 for (m, &x) in f.iter().enumerate() {
                     if m == k || m == (k + 1) % c {
@@ -331,7 +336,7 @@ impl ConvexModel {
                     // Every other vertex strictly on one side of this edge, in the face's plane.
                     let s = orient2d(p(a), p(b), p(x), i, j);
                     if s == 0 || s == -sign || orient3d(p(f[0]), p(f[1]), p(f[2]), p(x)) != 0 {
-                        return Err(Error::InvalidArgument);
+                        return Err(Error::InvalidConvexMesh);
                     }
                     sign = s;
                 }
@@ -346,7 +351,7 @@ impl ConvexModel {
                     .insert((f[k], f[(k + 1) % f.len()]), fi as u32)
                     .is_some()
                 {
-                    return Err(Error::InvalidArgument);
+                    return Err(Error::InvalidConvexMesh);
                 }
             }
         }
@@ -354,13 +359,13 @@ impl ConvexModel {
             .keys()
             .any(|&(a, b)| !directed.contains_key(&(b, a)))
         {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         let mut used = vec![false; nv];
         indices.iter().for_each(|&i| used[i as usize] = true);
         let ne = directed.len() / 2;
         if used.iter().any(|&u| !u) || nv + polys.len() != ne + 2 {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         // Fan triangles (no degenerate one: faces are strictly convex) and their neighbours.
         let mut surf = TriSurface {
@@ -383,7 +388,7 @@ impl ConvexModel {
             for i in 0..3 {
                 n[i] = *by_edge
                     .get(&(v[(i + 1) % 3], v[i]))
-                    .ok_or(Error::InvalidArgument)?;
+                    .ok_or(Error::InvalidConvexMesh)?;
             }
             surf.nbrs.push(n);
         }
@@ -400,23 +405,23 @@ impl ConvexModel {
             }
         }
         if seen.iter().any(|&s| !s) {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         // Convex and outward: no vertex beyond any face, and some vertex strictly below (a volume).
         let mut solid = false;
         for v in &surf.tris {
             for x in 0..nv as u32 {
                 match orient3d(p(v[0]), p(v[1]), p(v[2]), p(x)) {
-                    1 => return Err(Error::InvalidArgument),
+                    1 => return Err(Error::InvalidConvexMesh),
                     -1 => solid = true,
                     _ => {}
                 }
             }
         }
         if !solid {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
-        let faces = facets(&sp, &surf).map_err(|_| Error::InvalidArgument)?;
+        let faces = facets(&sp, &surf).map_err(|_| Error::InvalidConvexMesh)?;
         let ident: Vec<u32> = (0..nv as u32).collect();
         ConvexModel::assemble(&pts, &sp, &ident, faces)
     }
