@@ -119,6 +119,18 @@ fn scaled(points: &[Vec3]) -> Vec<P3> {
         .collect()
 }
 
+/// `v` scaled to unit length without underflow or overflow of its squared length (the squares of
+/// an area vector of points scaled to at most 1 can underflow); zero stays zero.
+pub(crate) fn unit(v: &Vec3) -> Vec3 {
+    let m = v.amax();
+    if m > 0.0 && m.is_finite() {
+        let w = v / m;
+        w / w.norm()
+    } else {
+        *v
+    }
+}
+
 /// A polygon's normal direction (not normalised), accurate even for slivers.
 fn newell(pts: &[P3], cycle: &[u32]) -> Vec3 {
     let a = area_vector(pts, cycle);
@@ -472,11 +484,10 @@ impl ConvexModel {
         };
         for (fi, f) in faces.iter().enumerate() {
             let n = newell(sp, f);
-            let norm = n.norm();
-            if norm.is_nan() || norm <= 0.0 {
+            let n = unit(&n);
+            if !n.iter().all(|v| v.is_finite()) || n == Vec3::zeros() {
                 return Err(Error::Internal);
             }
-            let n = n / norm;
             let d = f.iter().map(|&v| n.dot(&pts[v as usize])).sum::<f64>() / f.len() as f64;
             face_data.push(FaceData {
                 plane: Plane { n, d },
@@ -516,14 +527,14 @@ impl ConvexModel {
         }
         for e in edges.iter_mut() {
             let (t, h) = (verts[e.tail as usize], verts[e.head as usize]);
-            let u = (h - t).normalize();
+            let u = unit(&(h - t));
             let nl = face_data[e.left as usize].plane.n;
             let nr = face_data[e.right as usize].plane.n;
             e.planes = [
                 Plane::through(u, &t),
                 Plane::through(-u, &h),
-                Plane::through(u.cross(&nl).normalize(), &t),
-                Plane::through(nr.cross(&u).normalize(), &t),
+                Plane::through(unit(&u.cross(&nl)), &t),
+                Plane::through(unit(&nr.cross(&u)), &t),
             ];
         }
         // A face's side plane along an edge is the edge's plane along that face, reversed, bit for
@@ -561,7 +572,7 @@ impl ConvexModel {
                 vert_edges[slot] = ei as u32;
                 vert_others[slot] = w;
                 let (pv, pw) = (verts[v as usize], verts[w as usize]);
-                vert_planes[slot] = Plane::through((pv - pw).normalize(), &pv);
+                vert_planes[slot] = Plane::through(unit(&(pv - pw)), &pv);
             }
         }
         if (0..nv).any(|v| vert_start[v + 1] - vert_start[v] < 3) {
