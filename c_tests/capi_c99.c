@@ -77,7 +77,7 @@ static void test_misc(void) {
         CHECK(s != NULL && s[0] != '\0' && strcmp(s, "unknown error code") != 0);
     }
     CHECK(strcmp(pqp_error_string(12345), "unknown error code") == 0);
-    CHECK(strcmp(pqp_error_string(-11), "unknown error code") == 0);
+    CHECK(strcmp(pqp_error_string(-13), "unknown error code") == 0);
 }
 
 static void test_null_handling(void) {

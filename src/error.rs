@@ -33,6 +33,13 @@ pub enum Error {
     /// The library hit an internal fault (a caught panic); no state was changed that the caller can
     /// observe beyond the result object being reset (C ABI only, `PQP_ERR_INTERNAL`).
     Internal = -10,
+    /// A point set for a convex hull does not span a volume: fewer than four distinct points, or
+    /// all of them collinear or coplanar, including an empty set (`PQP_ERR_DEGENERATE_POINTS`).
+    DegeneratePoints = -11,
+    /// A mesh given as a convex polyhedron is not one: open, not a closed oriented sphere, a face
+    /// not planar or not strictly convex, a vertex unused, or a vertex above a face (not convex,
+    /// or inside out), or flat (`PQP_ERR_INVALID_CONVEX_MESH`).
+    InvalidConvexMesh = -12,
 }
 
 /// Largest accepted magnitude of a coordinate or translation. Beyond it squared lengths overflow
@@ -58,6 +65,10 @@ impl Error {
             Error::InvalidArgument => "invalid argument",
             Error::NullPointer => "null pointer",
             Error::Internal => "internal error",
+            Error::DegeneratePoints => {
+                "points do not span a volume (fewer than 4 distinct, collinear or coplanar)"
+            }
+            Error::InvalidConvexMesh => "mesh is not a closed convex polyhedron",
         }
     }
 }

@@ -29,6 +29,11 @@ fn create_destroy_loops_and_result_lifetimes() {
 }
 
 #[test]
+fn convex_polyhedra_error_paths_and_answers() {
+    c_program("convex");
+}
+
+#[test]
 fn threads_share_models() {
     c_program("threads");
 }

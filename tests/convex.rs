@@ -747,7 +747,7 @@ fn hull_of_thin_and_needle_sets() {
 
 #[test]
 fn degenerate_sets_are_refused() {
-    let e = Err(Error::InvalidArgument);
+    let e = Err(Error::DegeneratePoints);
     let kind = |pts: &[[f64; 3]]| ConvexModel::from_points(pts).map(|_| ());
     assert_eq!(kind(&[]), e);
     assert_eq!(kind(&[[0.0, 0.0, 0.0]; 10]), e);
@@ -819,9 +819,11 @@ fn meshes_are_verified() {
     let m = ConvexModel::from_triangles(&v, &tris).unwrap();
     assert_eq!(m.num_faces(), 6);
     check_hull(&m, &v, "cube triangles");
-    let refused = |v: &[[f64; 3]], c: &[u32], i: &[u32]| {
-        ConvexModel::from_polygons(v, c, i).map(|_| ()) == Err(Error::InvalidArgument)
+    let refused_as = |v: &[[f64; 3]], c: &[u32], i: &[u32], e: Error| {
+        ConvexModel::from_polygons(v, c, i).map(|_| ()) == Err(e)
     };
+    let refused =
+        |v: &[[f64; 3]], c: &[u32], i: &[u32]| refused_as(v, c, i, Error::InvalidConvexMesh);
     // Inside out.
     let flipped: Vec<u32> = idx
         .chunks(4)
@@ -837,7 +839,10 @@ fn meshes_are_verified() {
     // Not convex: a vertex pushed in (faces stay planar triangles).
     let mut dent = v.clone();
     dent[6] = [0.6, 0.6, 0.6];
-    assert!(ConvexModel::from_triangles(&dent, &tris).is_err());
+    assert_eq!(
+        ConvexModel::from_triangles(&dent, &tris).map(|_| ()),
+        Err(Error::InvalidConvexMesh)
+    );
     // Non-planar quad.
     let mut warp = v.clone();
     warp[6] = [1.0, 1.0, 1.1];
@@ -845,11 +850,30 @@ fn meshes_are_verified() {
     // Index out of range, unused vertex, bad counts.
     let mut oob = idx.clone();
     oob[0] = 99;
-    assert!(refused(&v, &counts, &oob));
+    assert!(refused_as(&v, &counts, &oob, Error::InvalidArgument));
     let mut extra = v.clone();
     extra.push([5.0, 5.0, 5.0]);
     assert!(refused(&extra, &counts, &idx));
-    assert!(refused(&v, &[4, 4, 4, 4, 4, 3], &idx));
+    assert!(refused_as(
+        &v,
+        &[4, 4, 4, 4, 4, 3],
+        &idx,
+        Error::InvalidArgument
+    ));
+    assert!(refused_as(
+        &v,
+        &[4, 4, 4, 4, 6, 2],
+        &idx,
+        Error::InvalidArgument
+    ));
+    // Flat: a square given twice, back to back.
+    let flat = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    assert!(refused(&flat, &[4, 4], &[0, 1, 2, 3, 3, 2, 1, 0]));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -104,6 +104,19 @@
 #define PQP_ERR_INTERNAL (-10)
 
 /**
+ * A point set given for a convex hull does not span a volume: no points, fewer than four distinct
+ * points, or all of them collinear or coplanar.
+ */
+#define PQP_ERR_DEGENERATE_POINTS (-11)
+
+/**
+ * A mesh given as a convex polyhedron is not a closed convex one: open, inconsistently oriented,
+ * not a topological sphere, a face not planar or not strictly convex, an unused vertex, a vertex
+ * above a face (not convex, or inside out), or flat.
+ */
+#define PQP_ERR_INVALID_CONVEX_MESH (-12)
+
+/**
  * Collision flag: report every colliding triangle pair.
  */
 #define PQP_ALL_CONTACTS 1
@@ -135,9 +148,43 @@
 #define PQP_SEARCH_PRIORITY 3
 
 /**
+ * Feature kind: a vertex (see pqp_convex_result_feature1_kind).
+ */
+#define PQP_CONVEX_VERTEX 0
+
+/**
+ * Feature kind: an edge.
+ */
+#define PQP_CONVEX_EDGE 1
+
+/**
+ * Feature kind: a face.
+ */
+#define PQP_CONVEX_FACE 2
+
+/**
  * The answer of pqp_collide (opaque). Reuse one for many queries to reuse its storage.
  */
 typedef struct pqp_collide_result pqp_collide_result;
+
+/**
+ * The warm-start state of one ordered pair of convex models (opaque): the feature pair the last
+ * query on them ended on. Owned by the caller, one per pair; used only with the two models (in
+ * the same order) that filled it, and ignored with any others.
+ */
+typedef struct pqp_convex_cache pqp_convex_cache;
+
+/**
+ * A convex polyhedron (opaque), immutable once created. Create with pqp_convex_model_from_points,
+ * pqp_convex_model_from_triangles or pqp_convex_model_from_polygons; free with
+ * pqp_convex_model_destroy.
+ */
+typedef struct pqp_convex_model pqp_convex_model;
+
+/**
+ * The answer of pqp_convex_distance or pqp_convex_penetration (opaque).
+ */
+typedef struct pqp_convex_result pqp_convex_result;
 
 /**
  * The answer of pqp_distance (opaque). Reusing one for the next query on the same two models starts
@@ -771,6 +818,463 @@ int64_t pqp_tolerance_result_num_tri_tests(const struct pqp_tolerance_result *r)
  * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
  */
 double pqp_tolerance_result_query_time_secs(const struct pqp_tolerance_result *r);
+
+/**
+ * Creates a convex model: the convex hull of a point set.
+ *
+ * The hull is exact: duplicate, coplanar and nearly coplanar points are fine (every decision is
+ * an exact orientation sign on the input doubles). Coplanar faces are merged into convex polygons
+ * and only the hull's corners become vertices (pqp_convex_model_vertex_source maps them back to
+ * the input).
+ *
+ * @param out  receives the new model (free it with pqp_convex_model_destroy), or NULL on any
+ *             error.
+ * @param xyz  the points, 3 doubles each (x, y, z in the model's frame), n * 3 doubles in all.
+ * @param n    the number of points, >= 0.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if out or xyz is NULL (even when n is 0);
+ *         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30; PQP_ERR_NONFINITE_COORDINATE if a
+ *         coordinate is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer than four
+ *         distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY if the
+ *         model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_convex_model_from_points(struct pqp_convex_model **out, const double *xyz, int n);
+
+/**
+ * Creates a convex model from a closed convex triangle mesh, verified exactly.
+ *
+ * The mesh must be closed and consistently oriented (each edge used once in each direction, faces
+ * counter-clockwise seen from outside), use every vertex, be a topological sphere and be convex
+ * (no vertex above the plane of any triangle). Coplanar neighbouring triangles are merged into
+ * polygons. A mesh convex only up to rounding is refused: build it with
+ * pqp_convex_model_from_points instead.
+ *
+ * @param out            receives the new model, or NULL on any error.
+ * @param xyz            the vertices, 3 doubles each, num_vertices * 3 doubles in all.
+ * @param num_vertices   the number of vertices, >= 0.
+ * @param triangles      vertex indices, 3 per triangle, num_triangles * 3 ints in all.
+ * @param num_triangles  the number of triangles, >= 0.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz or triangles is NULL;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large, or an index is negative or
+ *         >= num_vertices; PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
+ *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (open,
+ *         inconsistently oriented, inside out, not convex, flat, an unused vertex, fewer than 4
+ *         vertices or faces); PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_convex_model_from_triangles(struct pqp_convex_model **out,
+                                    const double *xyz,
+                                    int num_vertices,
+                                    const int *triangles,
+                                    int num_triangles);
+
+/**
+ * Creates a convex model from a closed convex polyhedral mesh (polygon faces), verified exactly.
+ *
+ * Face f has counts[f] vertices, listed counter-clockwise seen from outside; the faces' index
+ * lists are concatenated in indices. Each face must be exactly planar and strictly convex; the
+ * rest is as for pqp_convex_model_from_triangles.
+ *
+ * @param out           receives the new model, or NULL on any error.
+ * @param xyz           the vertices, 3 doubles each, num_vertices * 3 doubles in all.
+ * @param num_vertices  the number of vertices, >= 0.
+ * @param counts        the number of vertices of each face (each >= 3), num_faces ints.
+ * @param num_faces     the number of faces, >= 0.
+ * @param indices       the faces' vertex indices, concatenated, num_indices ints.
+ * @param num_indices   the number of indices: must equal the sum of counts.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz, counts or indices is NULL;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative, a face count is below 3, the counts do
+ *         not sum to num_indices, or an index is negative or >= num_vertices;
+ *         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
+ *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (as for
+ *         pqp_convex_model_from_triangles, or a face not planar or not strictly convex);
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_convex_model_from_polygons(struct pqp_convex_model **out,
+                                   const double *xyz,
+                                   int num_vertices,
+                                   const int *counts,
+                                   int num_faces,
+                                   const int *indices,
+                                   int num_indices);
+
+/**
+ * Frees a convex model.
+ *
+ * @param m  a model from a pqp_convex_model_from_ function, or NULL (then nothing happens). It
+ *           must not be used afterwards. Caches that saw it may be kept: they ignore it.
+ * Thread safety: must not run concurrently with any other call using m.
+ */
+void pqp_convex_model_destroy(struct pqp_convex_model *m);
+
+/**
+ * The number of vertices of a convex model (the hull's corners).
+ *
+ * @param m  the model, or NULL.
+ * @return the count; 0 if m is NULL.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_num_vertices(const struct pqp_convex_model *m);
+
+/**
+ * The number of edges of a convex model.
+ *
+ * @param m  the model, or NULL.
+ * @return the count; 0 if m is NULL.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_num_edges(const struct pqp_convex_model *m);
+
+/**
+ * The number of faces of a convex model (coplanar triangles merged: each face is a strictly
+ * convex polygon, and vertices - edges + faces = 2).
+ *
+ * @param m  the model, or NULL.
+ * @return the count; 0 if m is NULL.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_num_faces(const struct pqp_convex_model *m);
+
+/**
+ * Copies a vertex of a convex model.
+ *
+ * @param m    the model.
+ * @param i    the vertex index, 0 <= i < pqp_convex_model_num_vertices(m).
+ * @param xyz  receives 3 doubles: the vertex in the model's frame (an input point, bit for bit).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m or xyz is NULL; PQP_ERR_INVALID_ARGUMENT if i is out
+ *         of range (xyz is then not written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_vertex(const struct pqp_convex_model *m, int i, double *xyz);
+
+/**
+ * The input point a vertex of a convex model came from.
+ *
+ * @param m  the model, or NULL.
+ * @param i  the vertex index.
+ * @return the index of the point (for pqp_convex_model_from_points, the first of equal points)
+ *         or mesh vertex it is; -1 if m is NULL or i is out of range.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_vertex_source(const struct pqp_convex_model *m, int i);
+
+/**
+ * The end vertices of an edge of a convex model.
+ *
+ * @param m     the model.
+ * @param i     the edge index, 0 <= i < pqp_convex_model_num_edges(m).
+ * @param tail  receives one end's vertex index.
+ * @param head  receives the other end's vertex index.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, tail or head is NULL; PQP_ERR_INVALID_ARGUMENT if i
+ *         is out of range (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_edge(const struct pqp_convex_model *m, int i, int *tail, int *head);
+
+/**
+ * The number of vertices (= edges) of a face of a convex model.
+ *
+ * @param m  the model, or NULL.
+ * @param i  the face index.
+ * @return the count (>= 3); 0 if m is NULL or i is out of range.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_face_num_vertices(const struct pqp_convex_model *m, int i);
+
+/**
+ * The vertices of a face of a convex model, counter-clockwise seen from outside.
+ *
+ * @param m         the model.
+ * @param i         the face index, 0 <= i < pqp_convex_model_num_faces(m).
+ * @param vertices  receives pqp_convex_model_face_num_vertices(m, i) vertex indices.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m or vertices is NULL; PQP_ERR_INVALID_ARGUMENT if i is
+ *         out of range (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m.
+ */
+int pqp_convex_model_face(const struct pqp_convex_model *m, int i, int *vertices);
+
+/**
+ * Creates an empty pair cache (the first query with it starts cold).
+ *
+ * @return a new cache, to be freed with pqp_convex_cache_destroy; NULL only if memory could not
+ *         be allocated.
+ * Thread safety: may be called from any thread at any time.
+ */
+struct pqp_convex_cache *pqp_convex_cache_create(void);
+
+/**
+ * Frees a pair cache.
+ *
+ * @param c  a cache from pqp_convex_cache_create, or NULL (then nothing happens).
+ * Thread safety: must not run concurrently with any other call using c.
+ */
+void pqp_convex_cache_destroy(struct pqp_convex_cache *c);
+
+/**
+ * Empties a pair cache: the next query with it starts cold.
+ *
+ * @param c  the cache.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if c is NULL; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: must not run concurrently with any other call using c.
+ */
+int pqp_convex_cache_clear(struct pqp_convex_cache *c);
+
+/**
+ * Creates an empty convex result (distance +infinity, no feature pair, depth NaN).
+ *
+ * @return a new result, to be freed with pqp_convex_result_destroy; NULL only if memory could not
+ *         be allocated.
+ * Thread safety: may be called from any thread at any time.
+ */
+struct pqp_convex_result *pqp_convex_result_create(void);
+
+/**
+ * Frees a convex result.
+ *
+ * @param r  a result from pqp_convex_result_create, or NULL (then nothing happens).
+ * Thread safety: must not run concurrently with any other call using r.
+ */
+void pqp_convex_result_destroy(struct pqp_convex_result *r);
+
+/**
+ * Computes the separation distance of two posed convex models, their closest points and closest
+ * feature pair, and whether they intersect (V-Clip).
+ *
+ * Poses are as for pqp_collide (x_world = R x + T, R row by row). The distance is exact up to
+ * rounding; when the models touch or overlap it is 0, pqp_convex_result_intersecting reports 1,
+ * and p1, p2 are a point common to both. Models closer than the rounding of posing them (64 ulps
+ * of the scene's size) count as touching. The search is warm-started from cache (the feature pair
+ * the last query on the same two models ended on; near-constant time under coherent motion) and
+ * the cache is updated; with cache NULL it starts cold. The search's iterations are bounded; the
+ * bound is never reached on valid input (PQP_ERR_INTERNAL if it were).
+ *
+ * @param r       the result to fill (its previous answer is replaced; depth becomes NaN).
+ * @param R1, T1  the pose of model 1.
+ * @param m1      model 1.
+ * @param R2, T2  the pose of model 2.
+ * @param m2      model 2 (may be the same model as m1).
+ * @param cache   the pair's cache, or NULL for a cold start. A cache last used with other models
+ *                (or the same models in the other order) is ignored and then refilled.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if r, a pose pointer, m1 or m2 is NULL;
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_INTERNAL on an internal fault (r is then reset to its freshly created
+ *         state and the cache is left as it was). On any other error r and cache are unchanged.
+ * Thread safety: any number of queries may use the same models at once from different threads;
+ *                r and cache must not be used by another thread during the call.
+ */
+int pqp_convex_distance(struct pqp_convex_result *r,
+                        const double *R1,
+                        const double *T1,
+                        const struct pqp_convex_model *m1,
+                        const double *R2,
+                        const double *T2,
+                        const struct pqp_convex_model *m2,
+                        struct pqp_convex_cache *cache);
+
+/**
+ * Whether two posed convex models touch or overlap (V-Clip, as pqp_convex_distance).
+ *
+ * @param intersecting  receives 1 if they touch or overlap, else 0 (not written on error).
+ * @param R1, T1        the pose of model 1.
+ * @param m1            model 1.
+ * @param R2, T2        the pose of model 2.
+ * @param m2            model 2.
+ * @param cache         the pair's cache, or NULL for a cold start (as for pqp_convex_distance).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if intersecting, a pose pointer, m1 or m2 is NULL;
+ *         PQP_ERR_NONFINITE_POSE for a NaN, infinite or huge pose entry; PQP_ERR_INTERNAL on an
+ *         internal fault (the cache is then left as it was).
+ * Thread safety: any number of queries may use the same models at once from different threads;
+ *                cache must not be used by another thread during the call.
+ */
+int pqp_convex_intersect(int *intersecting,
+                         const double *R1,
+                         const double *T1,
+                         const struct pqp_convex_model *m1,
+                         const double *R2,
+                         const double *T2,
+                         const struct pqp_convex_model *m2,
+                         struct pqp_convex_cache *cache);
+
+/**
+ * Computes the penetration depth and direction of two posed convex models: the length and
+ * direction of the smallest translation of model 2 that separates it from model 1.
+ *
+ * The depth is exact up to rounding (the minimum over every candidate direction of the Minkowski
+ * difference: face normals and edge-edge pairs; cost grows with edges1 * edges2). r also receives
+ * everything pqp_convex_distance gives (distance, closest points, features, work), computed at the
+ * given poses; when the models are apart the depth is 0 and the normal points from model 1's
+ * closest point to model 2's.
+ *
+ * @param r       the result to fill (its previous answer is replaced).
+ * @param R1, T1  the pose of model 1.
+ * @param m1      model 1.
+ * @param R2, T2  the pose of model 2.
+ * @param m2      model 2.
+ * @param cache   the pair's cache, or NULL for a cold start (as for pqp_convex_distance).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if r, a pose pointer, m1 or m2 is NULL;
+ *         PQP_ERR_NONFINITE_POSE for a NaN, infinite or huge pose entry; PQP_ERR_INTERNAL on an
+ *         internal fault (r is then reset to its freshly created state). On any other error r and
+ *         cache are unchanged.
+ * Thread safety: any number of queries may use the same models at once from different threads;
+ *                r and cache must not be used by another thread during the call.
+ */
+int pqp_convex_penetration(struct pqp_convex_result *r,
+                           const double *R1,
+                           const double *T1,
+                           const struct pqp_convex_model *m1,
+                           const double *R2,
+                           const double *T2,
+                           const struct pqp_convex_model *m2,
+                           struct pqp_convex_cache *cache);
+
+/**
+ * The distance the last query on r found (0 when the models touch or overlap).
+ *
+ * @param r  the result, or NULL.
+ * @return the distance; +infinity before any query; NaN if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+double pqp_convex_result_distance(const struct pqp_convex_result *r);
+
+/**
+ * The closest point on model 1 found by the last query on r, in model 1's frame. When the models
+ * intersect, a point common to both (p1 and p2 are then the same world point).
+ *
+ * @param r  the result, or NULL.
+ * @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
+ *         query; NULL if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+const double *pqp_convex_result_p1(const struct pqp_convex_result *r);
+
+/**
+ * The closest point on model 2 found by the last query on r, in model 2's frame.
+ *
+ * @param r  the result, or NULL.
+ * @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
+ *         query; NULL if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+const double *pqp_convex_result_p2(const struct pqp_convex_result *r);
+
+/**
+ * Whether the last query on r found the models touching or overlapping.
+ *
+ * @param r  the result, or NULL.
+ * @return 1 if they touch or overlap, else 0 (also before any query); 0 if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_convex_result_intersecting(const struct pqp_convex_result *r);
+
+/**
+ * The kind of model 1's feature in the final feature pair of the last query on r (the closest
+ * feature when the models are apart; it contains p1).
+ *
+ * @param r  the result, or NULL.
+ * @return PQP_CONVEX_VERTEX, PQP_CONVEX_EDGE or PQP_CONVEX_FACE; -1 before any query or if r is
+ *         NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_convex_result_feature1_kind(const struct pqp_convex_result *r);
+
+/**
+ * The index of model 1's feature in the final feature pair of the last query on r, among model
+ * 1's features of its kind (see pqp_convex_model_vertex, _edge, _face).
+ *
+ * @param r  the result, or NULL.
+ * @return the index; -1 before any query or if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_convex_result_feature1_index(const struct pqp_convex_result *r);
+
+/**
+ * The kind of model 2's feature in the final feature pair of the last query on r (it contains p2
+ * when the models are apart).
+ *
+ * @param r  the result, or NULL.
+ * @return PQP_CONVEX_VERTEX, PQP_CONVEX_EDGE or PQP_CONVEX_FACE; -1 before any query or if r is
+ *         NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_convex_result_feature2_kind(const struct pqp_convex_result *r);
+
+/**
+ * The index of model 2's feature in the final feature pair of the last query on r.
+ *
+ * @param r  the result, or NULL.
+ * @return the index; -1 before any query or if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_convex_result_feature2_index(const struct pqp_convex_result *r);
+
+/**
+ * The penetration depth found by the last pqp_convex_penetration on r: the length of the smallest
+ * translation of model 2 that separates the models (0 when they are apart or only touch).
+ *
+ * @param r  the result, or NULL.
+ * @return the depth; NaN before any query, after pqp_convex_distance (which does not compute it),
+ *         or if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+double pqp_convex_result_depth(const struct pqp_convex_result *r);
+
+/**
+ * The penetration direction found by the last pqp_convex_penetration on r: the unit vector, in
+ * world coordinates, along which to move model 2 by the depth to separate it from model 1. When
+ * the models are apart, the direction from model 1's closest point to model 2's.
+ *
+ * @param r  the result, or NULL.
+ * @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
+ *         query, after pqp_convex_distance, or when the models are apart at distance 0; NULL if r
+ *         is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+const double *pqp_convex_result_normal(const struct pqp_convex_result *r);
+
+/**
+ * The deepest point of model 1 found by the last pqp_convex_penetration on r, in model 1's
+ * frame: where model 2, moved out by the depth along the normal, touches model 1. In world
+ * coordinates deepest_p1 = deepest_p2 + depth * normal. When apart, model 1's closest point.
+ *
+ * @param r  the result, or NULL.
+ * @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
+ *         query or after pqp_convex_distance; NULL if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+const double *pqp_convex_result_deepest_p1(const struct pqp_convex_result *r);
+
+/**
+ * The deepest point of model 2 found by the last pqp_convex_penetration on r, in model 2's frame
+ * (see pqp_convex_result_deepest_p1). When apart, model 2's closest point.
+ *
+ * @param r  the result, or NULL.
+ * @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
+ *         query or after pqp_convex_distance; NULL if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+const double *pqp_convex_result_deepest_p2(const struct pqp_convex_result *r);
+
+/**
+ * The number of V-Clip iterations (feature-pair steps) the last query on r took: small and nearly
+ * constant under coherent motion with a warm cache.
+ *
+ * @param r  the result, or NULL.
+ * @return the count (0 before any query); 0 if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int64_t pqp_convex_result_num_iterations(const struct pqp_convex_result *r);
+
+/**
+ * The number of local-minimum escapes (a vertex below a face's plane, resolved by a scan of the
+ * polyhedron) the last query on r performed.
+ *
+ * @param r  the result, or NULL.
+ * @return the count (0 before any query); 0 if r is NULL.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int64_t pqp_convex_result_num_local_minima(const struct pqp_convex_result *r);
 
 /**
  * Describes a status code.

@@ -1,10 +1,10 @@
 //! Error texts and the library's version.
 
 use super::{
-    boundary, PQP_ERR_BUILD_EMPTY_MODEL, PQP_ERR_BUILD_OUT_OF_SEQUENCE, PQP_ERR_INTERNAL,
-    PQP_ERR_INVALID_ARGUMENT, PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_NONFINITE_COORDINATE,
-    PQP_ERR_NONFINITE_POSE, PQP_ERR_NULL_POINTER, PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL,
-    PQP_OK,
+    boundary, PQP_ERR_BUILD_EMPTY_MODEL, PQP_ERR_BUILD_OUT_OF_SEQUENCE, PQP_ERR_DEGENERATE_POINTS,
+    PQP_ERR_INTERNAL, PQP_ERR_INVALID_ARGUMENT, PQP_ERR_INVALID_CONVEX_MESH,
+    PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_NONFINITE_COORDINATE, PQP_ERR_NONFINITE_POSE,
+    PQP_ERR_NULL_POINTER, PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL, PQP_OK,
 };
 use std::ffi::{c_char, c_int};
 
@@ -23,6 +23,10 @@ fn error_text(code: c_int) -> &'static std::ffi::CStr {
         PQP_ERR_INVALID_ARGUMENT => c"invalid argument",
         PQP_ERR_NULL_POINTER => c"null pointer",
         PQP_ERR_INTERNAL => c"internal error",
+        PQP_ERR_DEGENERATE_POINTS => {
+            c"points do not span a volume (fewer than 4 distinct, collinear or coplanar)"
+        }
+        PQP_ERR_INVALID_CONVEX_MESH => c"mesh is not a closed convex polyhedron",
         _ => c"unknown error code",
     }
 }
@@ -72,6 +76,8 @@ mod tests {
             Error::InvalidArgument,
             Error::NullPointer,
             Error::Internal,
+            Error::DegeneratePoints,
+            Error::InvalidConvexMesh,
         ];
         let constants = [
             PQP_ERR_MODEL_OUT_OF_MEMORY,
@@ -84,13 +90,15 @@ mod tests {
             PQP_ERR_INVALID_ARGUMENT,
             PQP_ERR_NULL_POINTER,
             PQP_ERR_INTERNAL,
+            PQP_ERR_DEGENERATE_POINTS,
+            PQP_ERR_INVALID_CONVEX_MESH,
         ];
         for (e, c) in all.iter().zip(constants) {
             assert_eq!(e.code(), c);
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), e.message());
         }
-        for c in [1, 2, -11, i32::MIN, i32::MAX] {
+        for c in [1, 2, -13, i32::MIN, i32::MAX] {
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), "unknown error code");
         }

@@ -32,10 +32,13 @@ mod collide;
 mod distance;
 // Tolerance.
 mod tolerance;
+// Convex polyhedra.
+mod convex;
 // Error texts and version.
 mod misc;
 
 pub use collide::*;
+pub use convex::*;
 pub use distance::*;
 pub use misc::*;
 pub use model::*;
@@ -74,6 +77,13 @@ pub const PQP_ERR_NULL_POINTER: c_int = -9;
 /// The library hit an internal fault (a bug); the call had no effect except that a query's result
 /// object is reset to its freshly created state.
 pub const PQP_ERR_INTERNAL: c_int = -10;
+/// A point set given for a convex hull does not span a volume: no points, fewer than four distinct
+/// points, or all of them collinear or coplanar.
+pub const PQP_ERR_DEGENERATE_POINTS: c_int = -11;
+/// A mesh given as a convex polyhedron is not a closed convex one: open, inconsistently oriented,
+/// not a topological sphere, a face not planar or not strictly convex, an unused vertex, a vertex
+/// above a face (not convex, or inside out), or flat.
+pub const PQP_ERR_INVALID_CONVEX_MESH: c_int = -12;
 /// Collision flag: report every colliding triangle pair.
 pub const PQP_ALL_CONTACTS: c_int = 1;
 /// Collision flag: stop at the first colliding triangle pair found.

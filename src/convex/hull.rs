@@ -71,11 +71,11 @@ impl HullTri {
     }
 }
 
-/// Four affinely independent points, or `InvalidArgument` when all points are coplanar (this
+/// Four affinely independent points, or `DegeneratePoints` when all points are coplanar (this
 /// includes fewer than four distinct points and collinear sets).
 fn initial_simplex(pts: &[P3]) -> Result<[u32; 4], Error> {
     if pts.len() < 4 {
-        return Err(Error::InvalidArgument);
+        return Err(Error::DegeneratePoints);
     }
     // Extreme in x, then the furthest from it: both only heuristics for a well-shaped start.
     let i0 = (0..pts.len())
@@ -89,7 +89,7 @@ fn initial_simplex(pts: &[P3]) -> Result<[u32; 4], Error> {
         })
         .unwrap_or(0);
     if pts[i1] == p0 {
-        return Err(Error::InvalidArgument);
+        return Err(Error::DegeneratePoints);
     }
     let p1 = pts[i1];
     let d01 = sub(&p1, &p0);
@@ -103,7 +103,7 @@ fn initial_simplex(pts: &[P3]) -> Result<[u32; 4], Error> {
     if collinear(&p0, &p1, &pts[i2]) {
         i2 = (0..pts.len())
             .find(|&i| !collinear(&p0, &p1, &pts[i]))
-            .ok_or(Error::InvalidArgument)?;
+            .ok_or(Error::DegeneratePoints)?;
     }
     let p2 = pts[i2];
     let nrm = cross(&d01, &sub(&p2, &p0));
@@ -114,7 +114,7 @@ fn initial_simplex(pts: &[P3]) -> Result<[u32; 4], Error> {
     if orient3d(&p0, &p1, &p2, &pts[i3]) == 0 {
         i3 = (0..pts.len())
             .find(|&i| orient3d(&p0, &p1, &p2, &pts[i]) != 0)
-            .ok_or(Error::InvalidArgument)?;
+            .ok_or(Error::DegeneratePoints)?;
     }
     Ok([i0 as u32, i1 as u32, i2 as u32, i3 as u32])
 }

@@ -186,6 +186,9 @@ pub struct ConvexPenetration {
     /// Deepest point of model 2 (model 2's frame), with `world(p1) = world(p2) + depth * normal`;
     /// when apart, its closest point.
     pub p2: Vec3,
+    /// The V-Clip answer at the given poses, as [`convex_distance`] returns it (distance, closest
+    /// points, final feature pair, work done).
+    pub closest: ConvexDistance,
 }
 
 /// A start pair from the cache, or a cold start: on each model the vertex furthest towards the
@@ -287,6 +290,7 @@ pub fn convex_penetration(
             normal: if n > 0.0 { v / n } else { Vec3::zeros() },
             p1: d.p1,
             p2: d.p2,
+            closest: d,
         });
     }
     let rel = RelPose::between(pose1, pose2);
@@ -304,5 +308,6 @@ pub fn convex_penetration(
         normal,
         p1: touch.points[0],
         p2: touch.points[1],
+        closest: d,
     })
 }

@@ -119,6 +119,18 @@ fn scaled(points: &[Vec3]) -> Vec<P3> {
         .collect()
 }
 
+/// `v` scaled to unit length without underflow or overflow of its squared length (the squares of
+/// an area vector of points scaled to at most 1 can underflow); zero stays zero.
+pub(crate) fn unit(v: &Vec3) -> Vec3 {
+    let m = v.amax();
+    if m > 0.0 && m.is_finite() {
+        let w = v / m;
+        w / w.norm()
+    } else {
+        *v
+    }
+}
+
 /// A polygon's normal direction (not normalised), accurate even for slivers.
 fn newell(pts: &[P3], cycle: &[u32]) -> Vec3 {
     let a = area_vector(pts, cycle);
@@ -245,8 +257,8 @@ impl ConvexModel {
     /// input point, see [`vertex_source`](ConvexModel::vertex_source)).
     ///
     /// Errors: `NonFiniteCoordinate` for a NaN, infinite or huge (> `MAX_COORDINATE`) coordinate;
-    /// `InvalidArgument` when the points do not span a volume (fewer than four distinct points, or
-    /// all collinear or coplanar).
+    /// `DegeneratePoints` when the points do not span a volume (fewer than four distinct points, or
+    /// all collinear or coplanar, or none); `InvalidArgument` for more than 2^30 points.
     ///
     /// ```
     /// use pqp::convex::ConvexModel;
@@ -290,7 +302,11 @@ impl ConvexModel {
     /// instead). Coplanar neighbouring faces are merged and vertices that are then not corners are
     /// dropped, as in `from_points`.
     ///
-    /// Errors: `NonFiniteCoordinate` for a bad coordinate, `InvalidArgument` for anything else.
+    /// Errors: `NonFiniteCoordinate` for a bad coordinate; `InvalidArgument` when the arrays are
+    /// malformed (an index out of range, a count below 3, counts not summing to the number of
+    /// indices, more than 2^30 vertices); `InvalidConvexMesh` when they describe something other
+    /// than a closed convex polyhedron (open, not an oriented sphere, a face not planar or not
+    /// strictly convex, an unused vertex, a vertex above a face, flat).
     pub fn from_polygons(
         vertices: &[[f64; 3]],
         counts: &[u32],
@@ -298,12 +314,16 @@ impl ConvexModel {
     ) -> Result<ConvexModel, Error> {
         let pts = import_points(vertices)?;
         let nv = pts.len();
-        if nv < 4 || counts.len() < 4 {
+        // Malformed arrays first (u64: the sum of u32 counts cannot overflow).
+        let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+        if total != indices.len() as u64
+            || counts.iter().any(|&c| c < 3)
+            || indices.iter().any(|&i| i as usize >= nv)
+        {
             return Err(Error::InvalidArgument);
         }
-        let total: usize = counts.iter().map(|&c| c as usize).sum();
-        if total != indices.len() || indices.iter().any(|&i| i as usize >= nv) {
-            return Err(Error::InvalidArgument);
+        if nv < 4 || counts.len() < 4 {
+            return Err(Error::InvalidConvexMesh);
         }
         let sp = scaled(&pts);
         let p = |x: u32| &sp[x as usize];
@@ -312,9 +332,6 @@ impl ConvexModel {
         let mut at = 0usize;
         for &c in counts {
             let c = c as usize;
-            if c < 3 {
-                return Err(Error::InvalidArgument);
-            }
             let f = &indices[at..at + c];
             at += c;
             let (i, j, _) = projection_axes(&newell(&sp, f));
@@ -322,7 +339,7 @@ impl ConvexModel {
             for k in 0..c {
                 let (a, b) = (f[k], f[(k + 1) % c]);
                 if a == b || f[..k].contains(&a) {
-                    return Err(Error::InvalidArgument);
+                    return Err(Error::InvalidConvexMesh);
                 }
                 for (m, &x) in f.iter().enumerate() {
                     if m == k || m == (k + 1) % c {
@@ -331,7 +348,7 @@ impl ConvexModel {
                     // Every other vertex strictly on one side of this edge, in the face's plane.
                     let s = orient2d(p(a), p(b), p(x), i, j);
                     if s == 0 || s == -sign || orient3d(p(f[0]), p(f[1]), p(f[2]), p(x)) != 0 {
-                        return Err(Error::InvalidArgument);
+                        return Err(Error::InvalidConvexMesh);
                     }
                     sign = s;
                 }
@@ -346,7 +363,7 @@ impl ConvexModel {
                     .insert((f[k], f[(k + 1) % f.len()]), fi as u32)
                     .is_some()
                 {
-                    return Err(Error::InvalidArgument);
+                    return Err(Error::InvalidConvexMesh);
                 }
             }
         }
@@ -354,13 +371,13 @@ impl ConvexModel {
             .keys()
             .any(|&(a, b)| !directed.contains_key(&(b, a)))
         {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         let mut used = vec![false; nv];
         indices.iter().for_each(|&i| used[i as usize] = true);
         let ne = directed.len() / 2;
         if used.iter().any(|&u| !u) || nv + polys.len() != ne + 2 {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         // Fan triangles (no degenerate one: faces are strictly convex) and their neighbours.
         let mut surf = TriSurface {
@@ -383,7 +400,7 @@ impl ConvexModel {
             for i in 0..3 {
                 n[i] = *by_edge
                     .get(&(v[(i + 1) % 3], v[i]))
-                    .ok_or(Error::InvalidArgument)?;
+                    .ok_or(Error::InvalidConvexMesh)?;
             }
             surf.nbrs.push(n);
         }
@@ -400,23 +417,23 @@ impl ConvexModel {
             }
         }
         if seen.iter().any(|&s| !s) {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
         // Convex and outward: no vertex beyond any face, and some vertex strictly below (a volume).
         let mut solid = false;
         for v in &surf.tris {
             for x in 0..nv as u32 {
                 match orient3d(p(v[0]), p(v[1]), p(v[2]), p(x)) {
-                    1 => return Err(Error::InvalidArgument),
+                    1 => return Err(Error::InvalidConvexMesh),
                     -1 => solid = true,
                     _ => {}
                 }
             }
         }
         if !solid {
-            return Err(Error::InvalidArgument);
+            return Err(Error::InvalidConvexMesh);
         }
-        let faces = facets(&sp, &surf).map_err(|_| Error::InvalidArgument)?;
+        let faces = facets(&sp, &surf).map_err(|_| Error::InvalidConvexMesh)?;
         let ident: Vec<u32> = (0..nv as u32).collect();
         ConvexModel::assemble(&pts, &sp, &ident, faces)
     }
@@ -467,11 +484,10 @@ impl ConvexModel {
         };
         for (fi, f) in faces.iter().enumerate() {
             let n = newell(sp, f);
-            let norm = n.norm();
-            if norm.is_nan() || norm <= 0.0 {
+            let n = unit(&n);
+            if !n.iter().all(|v| v.is_finite()) || n == Vec3::zeros() {
                 return Err(Error::Internal);
             }
-            let n = n / norm;
             let d = f.iter().map(|&v| n.dot(&pts[v as usize])).sum::<f64>() / f.len() as f64;
             face_data.push(FaceData {
                 plane: Plane { n, d },
@@ -511,14 +527,14 @@ impl ConvexModel {
         }
         for e in edges.iter_mut() {
             let (t, h) = (verts[e.tail as usize], verts[e.head as usize]);
-            let u = (h - t).normalize();
+            let u = unit(&(h - t));
             let nl = face_data[e.left as usize].plane.n;
             let nr = face_data[e.right as usize].plane.n;
             e.planes = [
                 Plane::through(u, &t),
                 Plane::through(-u, &h),
-                Plane::through(u.cross(&nl).normalize(), &t),
-                Plane::through(nr.cross(&u).normalize(), &t),
+                Plane::through(unit(&u.cross(&nl)), &t),
+                Plane::through(unit(&nr.cross(&u)), &t),
             ];
         }
         // A face's side plane along an edge is the edge's plane along that face, reversed, bit for
@@ -556,7 +572,7 @@ impl ConvexModel {
                 vert_edges[slot] = ei as u32;
                 vert_others[slot] = w;
                 let (pv, pw) = (verts[v as usize], verts[w as usize]);
-                vert_planes[slot] = Plane::through((pv - pw).normalize(), &pv);
+                vert_planes[slot] = Plane::through(unit(&(pv - pw)), &pv);
             }
         }
         if (0..nv).any(|v| vert_start[v + 1] - vert_start[v] < 3) {

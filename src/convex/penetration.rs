@@ -93,7 +93,7 @@ impl Arc {
             (Vec3::repeat(-2.0), Vec3::repeat(2.0))
         };
         Arc {
-            u: (h - t).normalize(),
+            u: super::model::unit(&(h - t)),
             n1,
             n2,
             mid: n1 + n2,
