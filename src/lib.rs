@@ -47,7 +47,7 @@ pub mod query;
 
 pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
-pub use model::Model;
+pub use model::{CollisionVolume, Model, VolumeKind};
 pub use query::{
     collide, collide_into, distance, distance_into, tolerance, tolerance_into, CollideResult,
     ContactMode, ContactPair, DistanceOptions, DistanceResult, Stats, ToleranceResult,

@@ -225,8 +225,8 @@ impl<'a> ClosestSearch<'a> {
     fn bound(&mut self, a: u32, b: u32) -> f64 {
         self.stats.bv_tests += 1;
         DistanceVolume::distance(
-            &self.b1.nodes[a as usize].rss,
-            &self.b2.nodes[b as usize].rss,
+            &self.b1.nodes[a as usize].ssv,
+            &self.b2.nodes[b as usize].ssv,
             &self.rel,
         )
     }
@@ -235,7 +235,7 @@ impl<'a> ClosestSearch<'a> {
     fn children(&mut self, p: &NodePair) -> Option<[NodePair; 2]> {
         let na = &self.b1.nodes[p.a as usize];
         let nb = &self.b2.nodes[p.b as usize];
-        let (c1, c2) = if descend_first(na, nb, &na.rss, &nb.rss) {
+        let (c1, c2) = if descend_first(na, nb, &na.ssv, &nb.ssv) {
             if na.child < 0 {
                 return None;
             }
