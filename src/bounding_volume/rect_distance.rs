@@ -25,8 +25,13 @@ use crate::math::{Mat3, Vec3};
 /// Rectangle A is `[0, la[0]] x [0, la[1]] x {0}` in its own frame. Rectangle B is
 /// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
 /// columns, the third being its normal) and `t` its corner, both in A's frame. Sides must be `>= 0`.
+///
+/// With `enough > 0` the search may stop at the first candidate pair at most `enough` apart and
+/// return its distance (an upper bound of the true one, itself at most `enough`): an overlap test
+/// needs no more. With `enough = 0` the answer is exact.
 #[inline]
-pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f64 {
+pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2], enough: f64) -> f64 {
+    let enough2 = enough * enough;
     // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
     let u: Vec3 = r.column(0) * lb[0];
     let v: Vec3 = r.column(1) * lb[1];
@@ -44,7 +49,7 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f
     // rectangles. That settles every pair whose nearest points include a corner (a touching corner
     // too: its offset is zero). The certificate is global, so b's nearest corner is tried before a
     // is even placed in b's frame.
-    if leads_away(&rb[ib], ib, &u, &v) {
+    if db <= enough2 || leads_away(&rb[ib], ib, &u, &v) {
         return db.sqrt();
     }
 
@@ -60,7 +65,7 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2]) -> f
         offset(&pa[3], lb),
     ];
     let (ia, da) = nearest(&ra);
-    if da < db && leads_away(&ra[ia], ia, &ua, &va) {
+    if da < db && (da <= enough2 || leads_away(&ra[ia], ia, &ua, &va)) {
         return da.sqrt();
     }
     let mut best = least(db, da);

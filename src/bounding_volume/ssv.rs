@@ -104,9 +104,10 @@ impl Ssv {
     }
 
     /// The distance between the two cores, `b` posed by `rel` in `a`'s frame, by the cheapest
-    /// routine for the pair of kinds; all are exact up to rounding.
+    /// routine for the pair of kinds; all are exact up to rounding. With `enough > 0`, any value
+    /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
-    fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
+    fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64) -> f64 {
         use SsvKind::{Line, Point, Rect};
         match (a.kind, b.kind) {
             (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
@@ -123,7 +124,7 @@ impl Ssv {
                 let m = a.axes.tr_mul(&rel.rot);
                 let r = m * b.axes;
                 let t = m * b.origin + a.axes.tr_mul(&(rel.trans - a.origin));
-                rect_distance(&r, &t, a.lengths, b.lengths)
+                rect_distance(&r, &t, a.lengths, b.lengths, enough)
             }
         }
     }
@@ -159,11 +160,10 @@ impl BoundingVolume for Ssv {
     }
 }
 
-impl DistanceVolume for Ssv {
-    #[inline]
-    fn distance(a: &Self, b: &Self, rel: &RelPose) -> f64 {
-        let d = Ssv::cores_distance(a, b, rel);
-        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
+impl Ssv {
+    /// Rounding allowance of a bound on `a` and `b` posed by `rel`.
+    #[inline(always)]
+    fn slack(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
         let scale = a.origin.abs().sum()
             + b.origin.abs().sum()
             + rel.trans.abs().sum()
@@ -171,16 +171,42 @@ impl DistanceVolume for Ssv {
             + a.lengths[1]
             + b.lengths[0]
             + b.lengths[1];
-        (d - a.radius - b.radius - BOUND_SLACK * scale).max(0.0)
+        BOUND_SLACK * scale
+    }
+
+    /// The centre of the core and the radius of a ball around the whole volume.
+    #[inline(always)]
+    fn ball(&self) -> (Vec3, f64) {
+        let (a, b) = (0.5 * self.lengths[0], 0.5 * self.lengths[1]);
+        let c = self.origin + self.axes.column(0) * a + self.axes.column(1) * b;
+        (c, (a * a + b * b).sqrt() + self.radius)
+    }
+}
+
+impl DistanceVolume for Ssv {
+    #[inline]
+    fn distance(a: &Self, b: &Self, rel: &RelPose) -> f64 {
+        let d = Ssv::cores_distance(a, b, rel, 0.0);
+        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
+        (d - a.radius - b.radius - Ssv::slack(a, b, rel)).max(0.0)
     }
 }
 
 impl OverlapVolume for Ssv {
-    /// Swept sphere volumes may meet exactly when their distance bound is 0: the bound never
-    /// exceeds the true distance, so it is 0 whenever they share a point.
+    /// Swept sphere volumes may meet exactly when their cores are within both radii (and the
+    /// rounding slack of the distance bound): never false when they share a point. Pairs whose
+    /// enclosing balls are apart are rejected first, and the core distance stops at the first pair
+    /// of points close enough.
     #[inline]
     fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
-        Ssv::distance(a, b, rel) <= 0.0
+        let (ca, ra) = a.ball();
+        let (cb, rb) = b.ball();
+        let slack = Ssv::slack(a, b, rel);
+        if (ca - rel.apply(&cb)).norm() > ra + rb + slack {
+            return false;
+        }
+        let reach = a.radius + b.radius + slack;
+        Ssv::cores_distance(a, b, rel, reach) <= reach
     }
 }
 

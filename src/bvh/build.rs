@@ -56,9 +56,9 @@ impl Bvh {
             for &t in range.iter() {
                 points.extend_from_slice(&tris[t as usize].0);
             }
-            let (axes, spread) = principal_axes(&points);
+            let axes = principal_axes(&points);
             let node = &mut nodes[ni];
-            node.ssv = fit_ssv(volume, &axes, &spread, &points);
+            node.ssv = fit_ssv(volume, &axes, &points);
             node.obb = Obb::fit(&axes, &points);
             if hi - lo == 1 {
                 // Leaves point at the triangle's slot in leaf order, which is its place in `order`.
@@ -161,31 +161,20 @@ fn split(
 
 /// The swept sphere volume of a node: the model's kind, or for the hybrid the kind that suits the
 /// node's points.
-fn fit_ssv(volume: VolumeKind, axes: &Mat3, spread: &Vec3, points: &[Vec3]) -> Ssv {
+fn fit_ssv(volume: VolumeKind, axes: &Mat3, points: &[Vec3]) -> Ssv {
     let kind = match volume {
         VolumeKind::Pss => SsvKind::Point,
         VolumeKind::Lss => SsvKind::Line,
         VolumeKind::Rss => SsvKind::Rect,
         VolumeKind::Hybrid => return hybrid_by_volume(axes, points),
-        VolumeKind::HybridBySpread => {
-            // Elongated: a capsule; round: a sphere; flat: a rectangle.
-            let (l0, l1, l2) = (spread.x, spread.y, spread.z);
-            if l1 < SPREAD_RATIO * l0 {
-                SsvKind::Line
-            } else if l2 >= SPREAD_RATIO * l0 {
-                SsvKind::Point
-            } else {
-                SsvKind::Rect
-            }
-        }
     };
     Ssv::fit(kind, axes, points)
 }
 
-/// Eigenvalue ratio below which a direction counts as thin, for the spread rule.
-const SPREAD_RATIO: f64 = 0.25;
-
-/// The smallest by volume of the three fits.
+/// The smallest by volume of the three fits. Measured against choosing by the spread of the
+/// covariance eigenvalues (a capsule when the second is below a quarter of the first, a sphere when
+/// the third is above it, else a rectangle): this rule did less work and was faster on every
+/// workload of `examples/volume_family.rs`, as a smaller volume prunes more.
 fn hybrid_by_volume(axes: &Mat3, points: &[Vec3]) -> Ssv {
     let mut best = Ssv::fit(SsvKind::Point, axes, points);
     // The sphere is the largest of the three: measure in its radius (a positive one).
@@ -202,9 +191,8 @@ fn hybrid_by_volume(axes: &Mat3, points: &[Vec3]) -> Ssv {
 }
 
 /// Principal axes of a point set: eigenvectors of its covariance, as orthonormal right-handed
-/// columns in decreasing order of eigenvalue, with those eigenvalues (the variances along the axes).
-/// Identity (and zero variances) when the covariance gives no usable frame.
-pub(crate) fn principal_axes(points: &[Vec3]) -> (Mat3, Vec3) {
+/// columns in decreasing order of eigenvalue. Identity when the covariance gives no usable frame.
+pub(crate) fn principal_axes(points: &[Vec3]) -> Mat3 {
     let n = points.len() as f64;
     let mean = points.iter().fold(Vec3::zeros(), |a, p| a + p) / n;
     let mut cov = Mat3::zeros();
@@ -214,7 +202,7 @@ pub(crate) fn principal_axes(points: &[Vec3]) -> (Mat3, Vec3) {
     }
     cov /= n;
     if !cov.iter().all(|v| v.is_finite()) {
-        return (Mat3::identity(), Vec3::zeros());
+        return Mat3::identity();
     }
     let eig = SymmetricEigen::new(cov);
     let mut idx = [0usize, 1, 2];
@@ -225,15 +213,10 @@ pub(crate) fn principal_axes(points: &[Vec3]) -> (Mat3, Vec3) {
     let a1 = (v1 - a0 * a0.dot(&v1)).normalize();
     let a2 = a0.cross(&a1);
     let axes = Mat3::from_columns(&[a0, a1, a2]);
-    let spread = Vec3::new(
-        eig.eigenvalues[idx[0]],
-        eig.eigenvalues[idx[1]],
-        eig.eigenvalues[idx[2]],
-    );
     if axes.iter().all(|v| v.is_finite()) && (a2.norm() - 1.0).abs() < 1e-6 {
-        (axes, spread)
+        axes
     } else {
-        (Mat3::identity(), Vec3::zeros())
+        Mat3::identity()
     }
 }
 
@@ -271,12 +254,7 @@ mod tests {
     /// Builds with every volume kind, checks that every node's volumes contain its vertices, and
     /// returns the default build.
     fn build_checked(tris: Vec<(Tri, i32)>) -> Bvh {
-        for v in [
-            VolumeKind::Pss,
-            VolumeKind::Lss,
-            VolumeKind::Hybrid,
-            VolumeKind::HybridBySpread,
-        ] {
+        for v in [VolumeKind::Pss, VolumeKind::Lss, VolumeKind::Hybrid] {
             let b = Bvh::build(tris.clone(), v, CollisionVolume::Ssv).unwrap();
             check_containment(&b);
         }
@@ -373,16 +351,15 @@ mod tests {
                 Vec3::new(3.0 * t.sin(), t.cos(), 0.1 * (2.0 * t).sin())
             })
             .collect();
-        let (ax, spread) = principal_axes(&pts);
-        assert!(spread.x >= spread.y && spread.y >= spread.z && spread.z >= -1e-12);
+        let ax = principal_axes(&pts);
         assert!((ax.transpose() * ax - Mat3::identity()).norm() < 1e-12);
         assert!((ax.determinant() - 1.0).abs() < 1e-12);
         assert!(ax.column(0).x.abs() > 0.9);
         // A single point has no spread: any orthonormal frame will do, but it must be one.
-        let (one, _) = principal_axes(&[Vec3::new(1.0, 2.0, 3.0)]);
+        let one = principal_axes(&[Vec3::new(1.0, 2.0, 3.0)]);
         assert!((one.transpose() * one - Mat3::identity()).norm() < 1e-12);
         // Coordinates whose squares overflow fall back to the identity rather than NaN.
         let huge = principal_axes(&[Vec3::new(1e200, 0.0, 0.0), Vec3::new(-1e200, 1.0, 0.0)]);
-        assert_eq!(huge.0, Mat3::identity());
+        assert_eq!(huge, Mat3::identity());
     }
 }
