@@ -201,7 +201,8 @@ fn check_fit(pts: &[Vec3], axes: &Mat3) {
     // bounding box's half diagonal (the sphere) or its cross-section's (the capsule).
     let pss = Ssv::fit(SsvKind::Point, axes, pts);
     let lss = Ssv::fit(SsvKind::Line, axes, pts);
-    assert_eq!((pss.kind, lss.kind), (SsvKind::Point, SsvKind::Line));
+    assert_eq!(pss.kind(), SsvKind::Point);
+    assert_ne!(lss.kind(), SsvKind::Rect);
     assert_eq!(pss.lengths, [0.0, 0.0]);
     assert_eq!(lss.lengths[1], 0.0);
     for v in [&pss, &lss] {
@@ -422,7 +423,6 @@ fn random_ssv(rng: &mut Rng, kind: SsvKind, size: f64, offset: f64) -> (Ssv, Vec
             _ => rng.log_uniform(1e-3, 1.0) * size,
         };
         let ssv = Ssv {
-            kind,
             axes: rng.rotation(),
             origin: rng.cube(offset),
             lengths,
@@ -588,7 +588,6 @@ fn ssv_distance_never_exceeds_the_distance_of_contained_points_for_every_pair_of
 #[test]
 fn ssv_distance_of_simple_cases() {
     let square = |o: [f64; 3], l: f64, r: f64| Ssv {
-        kind: SsvKind::Rect,
         axes: Mat3::identity(),
         origin: Vec3::new(o[0], o[1], o[2]),
         lengths: [l, l],
@@ -614,7 +613,6 @@ fn ssv_distance_of_simple_cases() {
     }
     // Crossing squares: one vertical through the other.
     let vertical = Ssv {
-        kind: SsvKind::Rect,
         axes: Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
         origin: Vec3::new(0.25, 0.5, -0.5),
         lengths: [0.5, 1.0],
@@ -641,7 +639,6 @@ fn ssv_distance_of_simple_cases() {
     assert!((Ssv::distance(&lifted, &large, &id) - 0.25).abs() < 1e-12);
     // Point swept spheres are spheres.
     let ball = |c: [f64; 3], r: f64| Ssv {
-        kind: SsvKind::Point,
         axes: Mat3::identity(),
         origin: Vec3::new(c[0], c[1], c[2]),
         lengths: [0.0, 0.0],
@@ -651,7 +648,6 @@ fn ssv_distance_of_simple_cases() {
     assert!((d - 3.5).abs() < 1e-12);
     // Line swept spheres are capsules: one along x, one along y crossing 2 above it.
     let capsule = |o: [f64; 3], axes: Mat3, r: f64| Ssv {
-        kind: SsvKind::Line,
         axes,
         origin: Vec3::new(o[0], o[1], o[2]),
         lengths: [2.0, 0.0],

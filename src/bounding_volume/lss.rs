@@ -1,7 +1,7 @@
 //! Line swept sphere fit: a segment along the axis of largest spread, swept by the smallest sphere
 //! that reaches every point.
 
-use super::ssv::{allowance, ball_centre, Ssv, SsvKind};
+use super::ssv::{allowance, ball_centre, Ssv};
 use crate::math::{Mat3, Vec3};
 
 /// A capsule containing every point (not empty), its segment along `axes.column(0)`.
@@ -30,7 +30,6 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
         (x0, x1) = (m, m);
     }
     Ssv {
-        kind: SsvKind::Line,
         axes: *axes,
         origin: axes * Vec3::new(x0, c.y, c.z),
         lengths: [(x1 - x0).max(0.0), 0.0],

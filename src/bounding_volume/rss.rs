@@ -1,7 +1,7 @@
 //! Rectangle swept sphere fit: a rectangle on the two axes of largest spread, swept by a sphere
 //! whose radius is half the spread along the third.
 
-use super::ssv::{allowance, Ssv, SsvKind};
+use super::ssv::{allowance, Ssv};
 use crate::math::{Mat3, Vec3};
 
 /// The rectangle swept sphere containing every point (not empty), its rectangle on the first two
@@ -94,7 +94,6 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
     }
 
     Ssv {
-        kind: SsvKind::Rect,
         axes: *axes,
         origin: axes * Vec3::new(x0, y0, zc),
         lengths: [(x1 - x0).max(0.0), (y1 - y0).max(0.0)],

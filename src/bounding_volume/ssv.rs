@@ -12,7 +12,7 @@ use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
 use crate::math::{Mat3, RelPose, Vec3};
 
-/// The core primitive of a swept sphere volume.
+/// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SsvKind {
     /// Point swept sphere (PSS): a sphere. Both sides are 0.
@@ -27,18 +27,17 @@ pub enum SsvKind {
 /// Swept sphere volume: the set of points within `radius` of its core.
 ///
 /// The core spans `origin + s * axes.column(0) + t * axes.column(1)` for `s` in `[0, lengths[0]]`,
-/// `t` in `[0, lengths[1]]`; `axes.column(2)` is the rectangle's normal. A [`SsvKind::Point`] has
-/// `lengths == [0, 0]` (the core is `origin`), a [`SsvKind::Line`] has `lengths[1] == 0`. The kind
-/// only chooses the fastest distance routine; the geometry is in the fields.
+/// `t` in `[0, lengths[1]]`; `axes.column(2)` is the rectangle's normal. With both sides 0 it is a
+/// point swept sphere (the core is `origin`), with the second side 0 a line swept sphere. The kind
+/// is read from the sides rather than stored: it only chooses the fastest exact distance routine,
+/// and a stored one would cost 8 bytes per volume and an invariant to keep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ssv {
-    /// Which primitive is swept.
-    pub kind: SsvKind,
     /// Orthonormal axes (columns) in the model frame.
     pub axes: Mat3,
     /// The core's corner (the centre of a PSS, an end of an LSS's segment), in the model frame.
     pub origin: Vec3,
-    /// Side lengths along the first two axes (`>= 0`; zero as the kind says).
+    /// Side lengths along the first two axes (`>= 0`).
     pub lengths: [f64; 2],
     /// Radius of the swept sphere.
     pub radius: f64,
@@ -57,7 +56,6 @@ impl Ssv {
         if points.is_empty() {
             // The builder never asks for this; an empty volume at the origin rather than NaNs.
             return Ssv {
-                kind,
                 axes: *axes,
                 origin: Vec3::zeros(),
                 lengths: [0.0; 2],
@@ -68,6 +66,19 @@ impl Ssv {
             SsvKind::Point => super::pss::fit(axes, points),
             SsvKind::Line => super::lss::fit(axes, points),
             SsvKind::Rect => super::rss::fit(axes, points),
+        }
+    }
+
+    /// What the core is: a point (both sides 0), a segment along the first axis (second side 0),
+    /// or a rectangle.
+    #[inline(always)]
+    pub fn kind(&self) -> SsvKind {
+        if self.lengths[1] != 0.0 {
+            SsvKind::Rect
+        } else if self.lengths[0] != 0.0 {
+            SsvKind::Line
+        } else {
+            SsvKind::Point
         }
     }
 
@@ -109,7 +120,7 @@ impl Ssv {
     #[inline]
     fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64) -> f64 {
         use SsvKind::{Line, Point, Rect};
-        match (a.kind, b.kind) {
+        match (a.kind(), b.kind()) {
             (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
             (Point, _) => b.core_distance(&rel.apply_inverse(&a.origin)),
             (_, Point) => a.core_distance(&rel.apply(&b.origin)),

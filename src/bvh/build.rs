@@ -104,7 +104,6 @@ impl Bvh {
 fn placeholder() -> Node {
     Node {
         ssv: Ssv {
-            kind: SsvKind::Rect,
             axes: Mat3::identity(),
             origin: Vec3::zeros(),
             lengths: [0.0; 2],
