@@ -66,12 +66,12 @@ fn split_first(a: &Node, b: &Node) -> bool {
     if a.child < 0 {
         return false;
     }
-    a.rss.size() >= b.rss.size()
+    a.ssv.size() >= b.ssv.size()
 }
 
 fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
     let bound =
-        |a: usize, b: usize| DistanceVolume::distance(&b1.nodes[a].rss, &b2.nodes[b].rss, rel);
+        |a: usize, b: usize| DistanceVolume::distance(&b1.nodes[a].ssv, &b2.nodes[b].ssv, rel);
     let mut out = MinimalBvtt {
         bound_tests: 1,
         ..MinimalBvtt::default()

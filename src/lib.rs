@@ -9,7 +9,10 @@
 //! Models carry a bounding-volume hierarchy of rectangle swept spheres (RSS, for distance and
 //! tolerance) and oriented bounding boxes (OBB, for collision), built top-down from the principal
 //! axes of each node's vertices, as in Larsen, Gottschalk, Lin and Manocha, *Fast Proximity Queries
-//! with Swept Sphere Volumes* (1999).
+//! with Swept Sphere Volumes* (1999). Before building, a model may choose other members of the swept
+//! sphere family ([`VolumeKind`]: point or line swept spheres, or a hybrid taking per node the
+//! smallest of the three) and collision on its swept spheres ([`CollisionVolume`]); answers are the
+//! same whatever the choice, only the work differs.
 //!
 //! ```
 //! use pqp::{collide, distance, ContactMode, DistanceOptions, Model, Pose};
@@ -47,7 +50,7 @@ pub mod query;
 
 pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
-pub use model::Model;
+pub use model::{CollisionVolume, Model, VolumeKind};
 pub use query::{
     collide, collide_into, distance, distance_into, tolerance, tolerance_into, CollideResult,
     ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats, Strategy,

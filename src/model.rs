@@ -6,6 +6,37 @@ use crate::geometry::Tri;
 use crate::math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// The swept sphere volume a model's hierarchy is built with, for the distance and tolerance
+/// queries (and for collision with [`CollisionVolume::Ssv`]). Chosen before [`Model::end`]; the
+/// default, [`VolumeKind::Rss`], is PQP's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum VolumeKind {
+    /// Rectangle swept spheres everywhere (PQP's choice): the tightest fit, the dearest test.
+    #[default]
+    Rss,
+    /// Point swept spheres (spheres) everywhere: the cheapest test, the loosest fit.
+    Pss,
+    /// Line swept spheres (capsules) everywhere.
+    Lss,
+    /// Each node takes the kind whose fitted volume is smallest: spheres where the triangles are
+    /// round, capsules where they are long, rectangles where they are flat. Measured fastest (see
+    /// `examples/volume_family.rs`); building costs about twice as much, as it fits all three.
+    Hybrid,
+}
+
+/// The volume the collision query tests a model's nodes with. Chosen before [`Model::end`]; the
+/// default, [`CollisionVolume::Obb`], is PQP's. Collision runs on swept sphere volumes only when
+/// both models ask for it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CollisionVolume {
+    /// Oriented bounding boxes (PQP's choice).
+    #[default]
+    Obb,
+    /// The model's swept sphere volumes (see [`VolumeKind`]): two may overlap when their distance
+    /// bound is 0.
+    Ssv,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum State {
     /// Fresh or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
@@ -38,6 +69,9 @@ pub struct Model {
     bvh: Option<Bvh>,
     /// Identifies this build of this model, for the triangle cache kept in distance results.
     uid: u64,
+    /// The hierarchy's volumes, chosen before `end`.
+    volume: VolumeKind,
+    collision: CollisionVolume,
 }
 
 impl Default for Model {
@@ -56,7 +90,54 @@ impl Model {
             pending: Vec::new(),
             bvh: None,
             uid: 0,
+            volume: VolumeKind::default(),
+            collision: CollisionVolume::default(),
         }
+    }
+
+    /// Chooses the swept sphere volume the hierarchy will be built with (default
+    /// [`VolumeKind::Rss`]). Any time before [`end`](Model::end); the choice stays for later builds
+    /// of this model (`begin` does not reset it).
+    ///
+    /// `Err(BuildOutOfSequence)` on a built model (its hierarchy is immutable); the choice is then
+    /// not changed.
+    ///
+    /// ```
+    /// use pqp::{Model, VolumeKind};
+    /// let mut m = Model::new();
+    /// m.set_volume(VolumeKind::Hybrid).unwrap();
+    /// m.add_triangle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0).unwrap();
+    /// m.end().unwrap();
+    /// assert_eq!(m.volume(), VolumeKind::Hybrid);
+    /// assert!(m.set_volume(VolumeKind::Rss).is_err());
+    /// ```
+    pub fn set_volume(&mut self, volume: VolumeKind) -> Result<(), Error> {
+        if self.state == State::Built {
+            return Err(Error::BuildOutOfSequence);
+        }
+        self.volume = volume;
+        Ok(())
+    }
+
+    /// Chooses the volume collision queries test this model's nodes with (default
+    /// [`CollisionVolume::Obb`]). As [`set_volume`](Model::set_volume): before `end`, kept across
+    /// builds, `Err(BuildOutOfSequence)` on a built model.
+    pub fn set_collision_volume(&mut self, collision: CollisionVolume) -> Result<(), Error> {
+        if self.state == State::Built {
+            return Err(Error::BuildOutOfSequence);
+        }
+        self.collision = collision;
+        Ok(())
+    }
+
+    /// The swept sphere volume chosen for the hierarchy.
+    pub fn volume(&self) -> VolumeKind {
+        self.volume
+    }
+
+    /// The collision volume chosen.
+    pub fn collision_volume(&self) -> CollisionVolume {
+        self.collision
     }
 
     /// Starts a model, reserving room for `capacity_hint` triangles (a hint only).
@@ -128,7 +209,7 @@ impl Model {
             State::Building => {}
         }
         let tris = std::mem::take(&mut self.pending);
-        let bvh = Bvh::build(tris)?;
+        let bvh = Bvh::build(tris, self.volume, self.collision)?;
         self.bvh = Some(bvh);
         self.state = State::Built;
         self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);

@@ -1,8 +1,9 @@
-//! Bounding volumes against brute force: containment of fitted point sets, the RSS distance as an
-//! exact lower bound, and the OBB overlap test against an independent box-box intersection test.
+//! Bounding volumes against brute force: containment of fitted point sets for every kind, the swept
+//! sphere volume distance as an exact lower bound for every pair of kinds, and the OBB overlap test
+//! against an independent box-box intersection test.
 
 use nalgebra::{Quaternion, Rotation3, SymmetricEigen, UnitQuaternion};
-use pqp::bounding_volume::{BoundingVolume, DistanceVolume, Obb, OverlapVolume, Rss};
+use pqp::bounding_volume::{BoundingVolume, DistanceVolume, Obb, OverlapVolume, Ssv, SsvKind};
 use pqp::math::{Mat3, RelPose, Vec3};
 
 /// splitmix64: small, seeded, good enough for test inputs.
@@ -155,8 +156,10 @@ fn spread(pts: &[Vec3], axis: &Vec3) -> f64 {
     hi - lo
 }
 
+const KINDS: [SsvKind; 3] = [SsvKind::Point, SsvKind::Line, SsvKind::Rect];
+
 fn check_fit(pts: &[Vec3], axes: &Mat3) {
-    let rss = Rss::fit(axes, pts);
+    let rss = Ssv::fit(SsvKind::Rect, axes, pts);
     let obb = Obb::fit(axes, pts);
     let finite = rss.origin.iter().all(|v| v.is_finite())
         && rss.lengths.iter().all(|v| v.is_finite() && *v >= 0.0)
@@ -194,6 +197,35 @@ fn check_fit(pts: &[Vec3], axes: &Mat3) {
             2.0 * obb.half[k]
         );
     }
+    // The sphere and the capsule: every point in, the kind's shape, and no looser than their
+    // bounding box's half diagonal (the sphere) or its cross-section's (the capsule).
+    let pss = Ssv::fit(SsvKind::Point, axes, pts);
+    let lss = Ssv::fit(SsvKind::Line, axes, pts);
+    assert_eq!(pss.kind(), SsvKind::Point);
+    assert_ne!(lss.kind(), SsvKind::Rect);
+    assert_eq!(pss.lengths, [0.0, 0.0]);
+    assert_eq!(lss.lengths[1], 0.0);
+    for v in [&pss, &lss] {
+        assert!(v.radius.is_finite() && v.lengths[0].is_finite() && v.lengths[0] >= 0.0);
+        assert!(v.origin.iter().all(|x| x.is_finite()));
+        for p in pts {
+            assert!(v.contains(p, 0.0), "{v:?} misses {p:?} of {pts:?}");
+        }
+    }
+    let h = obb.half;
+    assert!(
+        pss.radius <= h.norm() * (1.0 + 1e-12) + slack,
+        "sphere radius {} vs box half diagonal {}",
+        pss.radius,
+        h.norm()
+    );
+    let cross = (h.y * h.y + h.z * h.z).sqrt();
+    assert!(
+        lss.radius <= cross * (1.0 + 1e-12) + slack,
+        "capsule radius {} vs cross-section half diagonal {cross}",
+        lss.radius
+    );
+    assert!(lss.lengths[0] <= 2.0 * h.x * (1.0 + 1e-12) + slack);
 }
 
 #[test]
@@ -233,7 +265,7 @@ fn rss_keeps_corner_points_inside_a_small_rectangle() {
         let c = rng.cube(10.0);
         let pts: Vec<Vec3> = (0..50).map(|_| c + rng.unit() * 2.0).collect();
         let axes = rng.rotation();
-        let rss = Rss::fit(&axes, &pts);
+        let rss = Ssv::fit(SsvKind::Rect, &axes, &pts);
         for p in &pts {
             assert!(rss.contains(p, 0.0));
         }
@@ -282,7 +314,7 @@ impl Rect {
     }
 }
 
-fn rect_of(rss: &Rss, rel: &RelPose) -> Rect {
+fn rect_of(rss: &Ssv, rel: &RelPose) -> Rect {
     let o = rel.apply(&rss.origin);
     let u = rel.rot * rss.axes.column(0) * rss.lengths[0];
     let v = rel.rot * rss.axes.column(1) * rss.lengths[1];
@@ -368,29 +400,35 @@ fn brute_rect_distance(a: &Rect, b: &Rect) -> f64 {
     best
 }
 
-/// A random RSS: fitted to a point set, or made up (possibly a point or a segment swept sphere).
-fn random_rss(rng: &mut Rng, size: f64, offset: f64) -> (Rss, Vec<Vec3>) {
+/// A random swept sphere volume of `kind`: fitted to a point set, or made up (a rectangle possibly
+/// with zero sides).
+fn random_ssv(rng: &mut Rng, kind: SsvKind, size: f64, offset: f64) -> (Ssv, Vec<Vec3>) {
     if rng.below(2) == 0 {
         let pts = point_set(rng, size, offset);
         let axes = axes_for(rng, &pts);
-        (Rss::fit(&axes, &pts), pts)
+        (Ssv::fit(kind, &axes, &pts), pts)
     } else {
         let mut side = || match rng.below(4) {
             0 => 0.0,
             _ => rng.log_uniform(1e-3, 1.0) * size,
         };
-        let lengths = [side(), side()];
+        let mut lengths = [side(), side()];
+        match kind {
+            SsvKind::Point => lengths = [0.0; 2],
+            SsvKind::Line => lengths[1] = 0.0,
+            SsvKind::Rect => {}
+        }
         let radius = match rng.below(2) {
             0 => 0.0,
             _ => rng.log_uniform(1e-3, 1.0) * size,
         };
-        let rss = Rss {
+        let ssv = Ssv {
             axes: rng.rotation(),
             origin: rng.cube(offset),
             lengths,
             radius,
         };
-        (rss, Vec::new())
+        (ssv, Vec::new())
     }
 }
 
@@ -424,16 +462,20 @@ fn pose_for(
     RelPose { rot, trans }
 }
 
-fn random_rss_pair(rng: &mut Rng) -> (Rss, Vec<Vec3>, Rss, Vec<Vec3>, RelPose) {
+/// A pair of swept sphere volumes of the given kinds, posed to hit special cases often.
+fn random_ssv_pair(
+    rng: &mut Rng,
+    kinds: (SsvKind, SsvKind),
+) -> (Ssv, Vec<Vec3>, Ssv, Vec<Vec3>, RelPose) {
     let size = rng.log_uniform(1e-3, 1e3);
     let offset = if rng.below(2) == 0 {
         0.0
     } else {
         rng.log_uniform(1e-3, 1e5)
     };
-    let (a, pa) = random_rss(rng, size, offset);
+    let (a, pa) = random_ssv(rng, kinds.0, size, offset);
     let size_b = size * rng.log_uniform(0.1, 10.0);
-    let (b, pb) = random_rss(rng, size_b, offset);
+    let (b, pb) = random_ssv(rng, kinds.1, size_b, offset);
     let reach = a.size() + b.size();
     let q = special_rotation(rng);
     let mut p = Vec3::new(
@@ -464,17 +506,18 @@ fn random_rss_pair(rng: &mut Rng) -> (Rss, Vec<Vec3>, Rss, Vec<Vec3>, RelPose) {
 }
 
 /// Scale of the numbers that enter a bound, for rounding allowances.
-fn pose_scale(a: &Rss, b: &Rss, rel: &RelPose) -> f64 {
+fn pose_scale(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
     a.origin.abs().sum() + b.origin.abs().sum() + rel.trans.abs().sum() + a.size() + b.size()
 }
 
 #[test]
-fn rss_distance_is_the_exact_rectangle_distance_minus_radii() {
+fn ssv_distance_is_the_exact_core_distance_minus_radii_for_every_pair_of_kinds() {
     let mut rng = Rng(4);
     let (mut separated, mut touching) = (0, 0);
-    for _ in 0..4000 {
-        let (a, _, b, _, rel) = random_rss_pair(&mut rng);
-        let d = Rss::distance(&a, &b, &rel);
+    for i in 0..9 * 1500 {
+        let kinds = (KINDS[i % 3], KINDS[(i / 3) % 3]);
+        let (a, _, b, _, rel) = random_ssv_pair(&mut rng, kinds);
+        let d = Ssv::distance(&a, &b, &rel);
         let brute = brute_rect_distance(&rect_of(&a, &RelPose::identity()), &rect_of(&b, &rel));
         let expect = (brute - a.radius - b.radius).max(0.0);
         let tol = 1e-9 * expect + 1e-13 * pose_scale(&a, &b, &rel);
@@ -489,18 +532,26 @@ fn rss_distance_is_the_exact_rectangle_distance_minus_radii() {
         }
     }
     assert!(
-        separated > 1000 && touching > 150,
+        separated > 3000 && touching > 500,
         "{separated} separated, {touching} touching"
     );
 }
 
 #[test]
-fn rss_distance_never_exceeds_the_distance_of_contained_points() {
+fn ssv_distance_never_exceeds_the_distance_of_contained_points_for_every_pair_of_kinds() {
     let mut rng = Rng(5);
-    for _ in 0..400 {
-        let (a, pa, b, pb, rel) = random_rss_pair(&mut rng);
-        let d = Rss::distance(&a, &b, &rel);
-        let sample = |rng: &mut Rng, v: &Rss, pts: &[Vec3]| -> Vec<Vec3> {
+    for i in 0..9 * 200 {
+        let kinds = (KINDS[i % 3], KINDS[(i / 3) % 3]);
+        let (a, pa, b, pb, rel) = random_ssv_pair(&mut rng, kinds);
+        let d = Ssv::distance(&a, &b, &rel);
+        // Overlap on swept spheres: never false where the bound is 0 (so, below, never false
+        // when they share a point), and false where the cores are clearly beyond both radii.
+        let overlap = Ssv::overlap(&a, &b, &rel);
+        assert!(overlap || d > 0.0, "overlap missed: {a:?} {b:?} {rel:?}");
+        if d > 1e-9 * pose_scale(&a, &b, &rel) {
+            assert!(!overlap, "overlap claimed {d} apart: {a:?} {b:?} {rel:?}");
+        }
+        let sample = |rng: &mut Rng, v: &Ssv, pts: &[Vec3]| -> Vec<Vec3> {
             let mut out: Vec<Vec3> = pts.to_vec();
             for _ in 0..40 {
                 let base = v.origin
@@ -535,8 +586,8 @@ fn rss_distance_never_exceeds_the_distance_of_contained_points() {
 }
 
 #[test]
-fn rss_distance_of_simple_cases() {
-    let square = |o: [f64; 3], l: f64, r: f64| Rss {
+fn ssv_distance_of_simple_cases() {
+    let square = |o: [f64; 3], l: f64, r: f64| Ssv {
         axes: Mat3::identity(),
         origin: Vec3::new(o[0], o[1], o[2]),
         lengths: [l, l],
@@ -554,61 +605,85 @@ fn rss_distance_of_simple_cases() {
         ([-0.5, -0.5, 3.0], 2.8),
     ] {
         let b = square(o, 1.0, 0.1);
-        let d = Rss::distance(&a, &b, &id);
+        let d = Ssv::distance(&a, &b, &id);
         assert!((d - want).abs() < 1e-12, "{o:?}: {d} vs {want}");
         // Symmetric.
-        let d2 = Rss::distance(&b, &a, &id);
+        let d2 = Ssv::distance(&b, &a, &id);
         assert!((d2 - want).abs() < 1e-12, "{o:?} swapped: {d2} vs {want}");
     }
     // Crossing squares: one vertical through the other.
-    let vertical = Rss {
+    let vertical = Ssv {
         axes: Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
         origin: Vec3::new(0.25, 0.5, -0.5),
         lengths: [0.5, 1.0],
         radius: 0.0,
     };
     assert_eq!(
-        Rss::distance(&square([0.0; 3], 1.0, 0.0), &vertical, &id),
+        Ssv::distance(&square([0.0; 3], 1.0, 0.0), &vertical, &id),
         0.0
     );
     // A small square piercing a large one's interior, whose edges are all far: either order.
     let large = square([-10.0, -10.0, 0.0], 20.0, 0.0);
-    let small = Rss {
+    let small = Ssv {
         origin: Vec3::new(0.0, 0.0, -0.25),
         lengths: [0.5, 0.5],
         ..vertical
     };
-    assert_eq!(Rss::distance(&large, &small, &id), 0.0);
-    assert_eq!(Rss::distance(&small, &large, &id), 0.0);
-    let lifted = Rss {
+    assert_eq!(Ssv::distance(&large, &small, &id), 0.0);
+    assert_eq!(Ssv::distance(&small, &large, &id), 0.0);
+    let lifted = Ssv {
         origin: Vec3::new(0.0, 0.0, 0.25),
         ..small
     };
-    assert!((Rss::distance(&large, &lifted, &id) - 0.25).abs() < 1e-12);
-    assert!((Rss::distance(&lifted, &large, &id) - 0.25).abs() < 1e-12);
+    assert!((Ssv::distance(&large, &lifted, &id) - 0.25).abs() < 1e-12);
+    assert!((Ssv::distance(&lifted, &large, &id) - 0.25).abs() < 1e-12);
     // Point swept spheres are spheres.
-    let ball = |c: [f64; 3], r: f64| Rss {
+    let ball = |c: [f64; 3], r: f64| Ssv {
         axes: Mat3::identity(),
         origin: Vec3::new(c[0], c[1], c[2]),
         lengths: [0.0, 0.0],
         radius: r,
     };
-    let d = Rss::distance(&ball([0.0; 3], 1.0), &ball([3.0, 4.0, 0.0], 0.5), &id);
+    let d = Ssv::distance(&ball([0.0; 3], 1.0), &ball([3.0, 4.0, 0.0], 0.5), &id);
     assert!((d - 3.5).abs() < 1e-12);
+    // Line swept spheres are capsules: one along x, one along y crossing 2 above it.
+    let capsule = |o: [f64; 3], axes: Mat3, r: f64| Ssv {
+        axes,
+        origin: Vec3::new(o[0], o[1], o[2]),
+        lengths: [2.0, 0.0],
+        radius: r,
+    };
+    let quarter = Mat3::new(0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+    let along_x = capsule([0.0; 3], Mat3::identity(), 0.25);
+    let along_y = capsule([1.0, -1.0, 2.0], quarter, 0.25);
+    let square0 = square([0.0; 3], 1.0, 0.0);
+    for (a, b, want) in [
+        (along_x, along_y, 1.5),
+        (along_x, ball([3.0, 0.0, 0.0], 0.5), 0.25),
+        (along_y, ball([1.0, 0.0, 1.0], 0.25), 0.5),
+        (along_y, square0, 1.75),
+        (along_x, square0, 0.0),
+        (square0, ball([0.5, 0.5, -3.0], 1.0), 2.0),
+    ] {
+        for (x, y) in [(a, b), (b, a)] {
+            let d = Ssv::distance(&x, &y, &id);
+            assert!((d - want).abs() < 1e-12, "{x:?} {y:?}: {d} vs {want}");
+        }
+    }
     // Through a pose: b rotated a quarter turn about z and moved.
     let rel = RelPose {
         rot: Mat3::new(0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0),
         trans: Vec3::new(0.0, 0.0, 5.0),
     };
     let b = square([0.0, 0.0, 0.0], 1.0, 0.0);
-    let d = Rss::distance(&square([0.0; 3], 1.0, 0.0), &b, &rel);
+    let d = Ssv::distance(&square([0.0; 3], 1.0, 0.0), &b, &rel);
     assert!((d - 5.0).abs() < 1e-12);
     let rel = RelPose {
         rot: rel.rot,
         trans: Vec3::new(-3.0, 0.5, 0.0),
     };
     // b now spans x in [-4, -3], y in [0.5, 1.5]: nearest is its edge x = -3 to a's edge x = 0.
-    let d = Rss::distance(&square([0.0; 3], 1.0, 0.0), &b, &rel);
+    let d = Ssv::distance(&square([0.0; 3], 1.0, 0.0), &b, &rel);
     assert!((d - 3.0).abs() < 1e-12, "{d}");
 }
 
@@ -847,8 +922,9 @@ fn volumes_at_huge_coordinates_stay_finite_and_conservative() {
             rot: rng.rotation(),
             trans: rng.cube(1e150),
         };
-        let (ra, rb) = (Rss::fit(&axa, &pa), Rss::fit(&axb, &pb));
-        let d = Rss::distance(&ra, &rb, &rel);
+        let (ka, kb) = (KINDS[rng.below(3)], KINDS[rng.below(3)]);
+        let (ra, rb) = (Ssv::fit(ka, &axa, &pa), Ssv::fit(kb, &axb, &pb));
+        let d = Ssv::distance(&ra, &rb, &rel);
         let mut near = f64::INFINITY;
         for p in &pa {
             for q in &pb {
@@ -862,7 +938,7 @@ fn volumes_at_huge_coordinates_stay_finite_and_conservative() {
             assert!(Obb::overlap(&oa, &ob, &rel));
         }
         // A volume against itself, exactly placed.
-        assert_eq!(Rss::distance(&ra, &ra, &RelPose::identity()), 0.0);
+        assert_eq!(Ssv::distance(&ra, &ra, &RelPose::identity()), 0.0);
         assert!(Obb::overlap(&oa, &oa, &RelPose::identity()));
     }
 }

@@ -87,8 +87,8 @@
 #define PQP_ERR_NONFINITE_POSE (-7)
 
 /**
- * An argument is out of its domain: unknown contact flag, negative or NaN rel_err, abs_err or
- * tolerance, qsize < 1.
+ * An argument is out of its domain: unknown contact flag or volume choice, negative or NaN rel_err,
+ * abs_err or tolerance, qsize < 1.
  */
 #define PQP_ERR_INVALID_ARGUMENT (-8)
 
@@ -146,6 +146,38 @@
  * Search strategy: priority-directed, nearest pending pair first.
  */
 #define PQP_SEARCH_PRIORITY 3
+
+/**
+ * Volume choice (pqp_model_set_volume): rectangle swept spheres, PQP's choice and the default.
+ */
+#define PQP_BV_RSS 0
+
+/**
+ * Volume choice (pqp_model_set_volume): point swept spheres (spheres).
+ */
+#define PQP_BV_PSS 1
+
+/**
+ * Volume choice (pqp_model_set_volume): line swept spheres (capsules).
+ */
+#define PQP_BV_LSS 2
+
+/**
+ * Volume choice (pqp_model_set_volume): each node takes the swept sphere volume kind whose fitted
+ * volume is smallest.
+ */
+#define PQP_BV_HYBRID 3
+
+/**
+ * Collision volume choice (pqp_model_set_collision_volume): oriented boxes, PQP's choice and the
+ * default.
+ */
+#define PQP_COLLIDE_OBB 0
+
+/**
+ * Collision volume choice (pqp_model_set_collision_volume): the model's swept sphere volumes.
+ */
+#define PQP_COLLIDE_SSV 1
 
 /**
  * Feature kind: a vertex (see pqp_convex_result_feature1_kind).
@@ -314,6 +346,36 @@ int pqp_model_add_tri(struct pqp_model *m,
  * Thread safety: must not run concurrently with any other call using m.
  */
 int pqp_model_end(struct pqp_model *m);
+
+/**
+ * Chooses the swept sphere volume a model's hierarchy is built with, for distance and tolerance
+ * queries (and for collision with PQP_COLLIDE_SSV). Call it before pqp_model_end; the choice stays
+ * for later builds of the model (pqp_model_begin does not reset it). Without it a model uses
+ * PQP_BV_RSS, as PQP does. Answers are the same whatever the choice; only the work differs.
+ *
+ * @param m     the model.
+ * @param kind  PQP_BV_RSS, PQP_BV_PSS, PQP_BV_LSS or PQP_BV_HYBRID.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if kind is none of
+ *         those (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built
+ *         (the choice is not changed); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: must not run concurrently with any other call using m.
+ */
+int pqp_model_set_volume(struct pqp_model *m, int kind);
+
+/**
+ * Chooses the volume collision queries test a model's nodes with. Call it before pqp_model_end;
+ * the choice stays for later builds of the model. Without it a model uses PQP_COLLIDE_OBB, as PQP
+ * does. A collision query runs on swept sphere volumes only when both of its models chose
+ * PQP_COLLIDE_SSV; the pairs reported are the same either way.
+ *
+ * @param m       the model.
+ * @param volume  PQP_COLLIDE_OBB or PQP_COLLIDE_SSV.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if volume is neither
+ *         (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built (the
+ *         choice is not changed); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: must not run concurrently with any other call using m.
+ */
+int pqp_model_set_collision_volume(struct pqp_model *m, int volume);
 
 /**
  * The number of triangles a model holds (added so far, or in the built model).

@@ -1,25 +1,25 @@
-//! Bounding volumes: one file per kind.
+//! Bounding volumes: oriented boxes (`obb.rs`) and the swept sphere volume family (`ssv.rs`, with
+//! one fit per kind: `pss.rs`, `lss.rs`, `rss.rs`; the exact core distance in `rect_distance.rs`).
 //!
 //! A volume is fitted in its model's frame on principal axes chosen by the hierarchy builder, and
 //! tested against a volume of another model through the relative pose of the second model's frame in
 //! the first's. Distance volumes give a lower bound on the distance between anything they contain;
 //! overlap volumes answer whether they may intersect.
 
+mod lss;
 mod obb;
+mod pss;
 mod rect_distance;
 mod rss;
+mod ssv;
 
 pub use obb::Obb;
-pub use rss::Rss;
+pub use ssv::{Ssv, SsvKind};
 
-use crate::math::{Mat3, RelPose, Vec3};
+use crate::math::{RelPose, Vec3};
 
 /// What every bounding volume offers the hierarchy builder.
 pub trait BoundingVolume: Copy + Send + Sync + std::fmt::Debug + 'static {
-    /// The tightest volume of this kind on the given axes (orthonormal columns of `axes`, right-handed,
-    /// in decreasing order of spread) that contains every point of `points` (not empty).
-    fn fit(axes: &Mat3, points: &[Vec3]) -> Self;
-
     /// Whether `p` lies in the volume, allowing `eps` of slack (for tests and debug checks).
     fn contains(&self, p: &Vec3, eps: f64) -> bool;
 

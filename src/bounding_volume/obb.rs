@@ -25,8 +25,10 @@ impl Obb {
     }
 }
 
-impl BoundingVolume for Obb {
-    fn fit(axes: &Mat3, points: &[Vec3]) -> Self {
+impl Obb {
+    /// The tightest box on the given axes (orthonormal right-handed columns) that contains every
+    /// point of `points` (not empty).
+    pub fn fit(axes: &Mat3, points: &[Vec3]) -> Self {
         let Some(first) = points.first() else {
             // The builder never asks for this; an empty box at the origin rather than NaNs.
             return Obb {
@@ -56,7 +58,9 @@ impl BoundingVolume for Obb {
         }
         obb
     }
+}
 
+impl BoundingVolume for Obb {
     fn contains(&self, p: &Vec3, eps: f64) -> bool {
         let q = self.local(p);
         q.x.abs() <= self.half.x + eps

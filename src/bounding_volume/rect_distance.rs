@@ -20,18 +20,30 @@
 
 use crate::math::{Mat3, Vec3};
 
-/// Distance between two rectangles, or a lower bound on it no less than `cutoff` when the distance
-/// is at least `cutoff` (pass `f64::INFINITY` for the exact distance always).
+/// Distance between two rectangles (or less, see `cutoff` and `enough` below).
 ///
 /// Rectangle A is `[0, la[0]] x [0, la[1]] x {0}` in its own frame. Rectangle B is
 /// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
 /// columns, the third being its normal) and `t` its corner, both in A's frame. Sides must be `>= 0`.
 ///
-/// The cutoff lets a caller that only needs to know "at least `cutoff`" (a search that will prune
-/// such a pair) skip the exact work: the gap between the boxes around each rectangle in the other's
-/// frame often settles it, and the edge searches then need only beat `cutoff`.
+/// Two thresholds let a caller that needs less than the exact distance skip work:
+/// - `cutoff`: when the distance is at least `cutoff`, any lower bound no less than `cutoff` may be
+///   returned (a search that prunes such pairs needs no more). The gap between the boxes around
+///   each rectangle in the other's frame often settles it, and the edge searches then need only
+///   beat `cutoff`. `f64::INFINITY`: no cutoff.
+/// - `enough`: the search may stop at the first candidate pair at most `enough` apart and return
+///   its distance (an upper bound of the true one, itself at most `enough`): an overlap test needs
+///   no more. 0: exact.
 #[inline]
-pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2], cutoff: f64) -> f64 {
+pub(crate) fn rect_distance(
+    r: &Mat3,
+    t: &Vec3,
+    la: [f64; 2],
+    lb: [f64; 2],
+    enough: f64,
+    cutoff: f64,
+) -> f64 {
+    let enough2 = enough * enough;
     // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
     let u: Vec3 = r.column(0) * lb[0];
     let v: Vec3 = r.column(1) * lb[1];
@@ -54,7 +66,7 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2], cuto
     // rectangles. That settles every pair whose nearest points include a corner (a touching corner
     // too: its offset is zero). The certificate is global, so b's nearest corner is tried before a
     // is even placed in b's frame.
-    if leads_away(&rb[ib], ib, &u, &v) {
+    if db <= enough2 || leads_away(&rb[ib], ib, &u, &v) {
         return db.sqrt();
     }
 
@@ -70,7 +82,7 @@ pub(crate) fn rect_distance(r: &Mat3, t: &Vec3, la: [f64; 2], lb: [f64; 2], cuto
         offset(&pa[3], lb),
     ];
     let (ia, da) = nearest(&ra);
-    if da < db && leads_away(&ra[ia], ia, &ua, &va) {
+    if da < db && (da <= enough2 || leads_away(&ra[ia], ia, &ua, &va)) {
         return da.sqrt();
     }
     let gap_a = box_gap(&pa, lb);
@@ -241,9 +253,9 @@ mod tests {
             let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.f().abs() };
             let la = [side(&mut rng, k % 7 == 0), side(&mut rng, k % 5 == 0)];
             let lb = [side(&mut rng, k % 11 == 0), side(&mut rng, k % 4 == 0)];
-            let exact = rect_distance(&r, &t, la, lb, f64::INFINITY);
+            let exact = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
             let cutoff = exact * (0.5 + rng.f().abs());
-            let got = rect_distance(&r, &t, la, lb, cutoff);
+            let got = rect_distance(&r, &t, la, lb, 0.0, cutoff);
             if exact < cutoff {
                 below += 1;
                 assert_eq!(got, exact, "case {k}");

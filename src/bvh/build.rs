@@ -2,10 +2,11 @@
 //! vertices, split across the axis of largest spread at the mean of the triangle centroids.
 
 use super::{Bvh, Node};
-use crate::bounding_volume::{BoundingVolume, Obb, Rss};
+use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3};
+use crate::model::{CollisionVolume, VolumeKind};
 use nalgebra::SymmetricEigen;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
@@ -17,8 +18,13 @@ const MEAN_SPLIT_MAX_DEPTH: usize = 40;
 pub(crate) const MAX_DEPTH: usize = MEAN_SPLIT_MAX_DEPTH + 33;
 
 impl Bvh {
-    /// Builds the hierarchy over `tris` (not empty). O(n log n).
-    pub fn build(tris: Vec<(Tri, i32)>) -> Result<Bvh, Error> {
+    /// Builds the hierarchy over `tris` (not empty), with swept sphere volumes of `volume` and
+    /// collision on `collision`. O(n log n).
+    pub fn build(
+        tris: Vec<(Tri, i32)>,
+        volume: VolumeKind,
+        collision: CollisionVolume,
+    ) -> Result<Bvh, Error> {
         let n = tris.len();
         debug_assert!(n > 0);
         let mut order: Vec<u32> = Vec::new();
@@ -52,7 +58,7 @@ impl Bvh {
             }
             let axes = principal_axes(&points);
             let node = &mut nodes[ni];
-            node.rss = Rss::fit(&axes, &points);
+            node.ssv = fit_ssv(volume, &axes, &points);
             node.obb = Obb::fit(&axes, &points);
             if hi - lo == 1 {
                 // Leaves point at the triangle's slot in leaf order, which is its place in `order`.
@@ -90,13 +96,14 @@ impl Bvh {
             nodes,
             tris: leaf_tris,
             ids,
+            collision,
         })
     }
 }
 
 fn placeholder() -> Node {
     Node {
-        rss: Rss {
+        ssv: Ssv {
             axes: Mat3::identity(),
             origin: Vec3::zeros(),
             lengths: [0.0; 2],
@@ -149,6 +156,37 @@ fn split(
         *slot = t;
     }
     mid
+}
+
+/// The swept sphere volume of a node: the model's kind, or for the hybrid the kind that suits the
+/// node's points.
+fn fit_ssv(volume: VolumeKind, axes: &Mat3, points: &[Vec3]) -> Ssv {
+    let kind = match volume {
+        VolumeKind::Pss => SsvKind::Point,
+        VolumeKind::Lss => SsvKind::Line,
+        VolumeKind::Rss => SsvKind::Rect,
+        VolumeKind::Hybrid => return hybrid_by_volume(axes, points),
+    };
+    Ssv::fit(kind, axes, points)
+}
+
+/// The smallest by volume of the three fits. Measured against choosing by the spread of the
+/// covariance eigenvalues (a capsule when the second is below a quarter of the first, a sphere when
+/// the third is above it, else a rectangle): this rule did less work and was faster on every
+/// workload of `examples/volume_family.rs`, as a smaller volume prunes more.
+fn hybrid_by_volume(axes: &Mat3, points: &[Vec3]) -> Ssv {
+    let mut best = Ssv::fit(SsvKind::Point, axes, points);
+    // The sphere is the largest of the three: measure in its radius (a positive one).
+    let unit = if best.radius > 0.0 { best.radius } else { 1.0 };
+    let mut least = best.volume(unit);
+    for kind in [SsvKind::Line, SsvKind::Rect] {
+        let v = Ssv::fit(kind, axes, points);
+        let vol = v.volume(unit);
+        if vol < least {
+            (best, least) = (v, vol);
+        }
+    }
+    best
 }
 
 /// Principal axes of a point set: eigenvectors of its covariance, as orthonormal right-handed
@@ -205,11 +243,23 @@ mod tests {
             for t in tris {
                 for v in &bvh.tris[t] {
                     let eps = 1e-9 * (1.0 + v.norm());
-                    assert!(node.rss.contains(v, eps), "rss of node {i} misses {v:?}");
+                    assert!(node.ssv.contains(v, eps), "ssv of node {i} misses {v:?}");
                     assert!(node.obb.contains(v, eps), "obb of node {i} misses {v:?}");
                 }
             }
         }
+    }
+
+    /// Builds with every volume kind, checks that every node's volumes contain its vertices, and
+    /// returns the default build.
+    fn build_checked(tris: Vec<(Tri, i32)>) -> Bvh {
+        for v in [VolumeKind::Pss, VolumeKind::Lss, VolumeKind::Hybrid] {
+            let b = Bvh::build(tris.clone(), v, CollisionVolume::Ssv).unwrap();
+            check_containment(&b);
+        }
+        let b = Bvh::build(tris, VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        check_containment(&b);
+        b
     }
 
     fn tri(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Tri {
@@ -243,9 +293,8 @@ mod tests {
                     ([v(), v(), v()], i)
                 })
                 .collect();
-            let bvh = Bvh::build(tris).unwrap();
+            let bvh = build_checked(tris);
             assert_eq!(bvh.nodes.len(), 2 * n as usize - 1);
-            check_containment(&bvh);
             let mut ids = bvh.ids.clone();
             ids.sort();
             assert_eq!(ids, (0..n).collect::<Vec<_>>());
@@ -258,16 +307,14 @@ mod tests {
         let same: Vec<(Tri, i32)> = (0..1000)
             .map(|i| (tri([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), i))
             .collect();
-        let b = Bvh::build(same).unwrap();
+        let b = build_checked(same);
         assert!(b.depth() <= 11, "depth {}", b.depth());
-        check_containment(&b);
         // All points at one place.
         let points: Vec<(Tri, i32)> = (0..64)
             .map(|i| (tri([2.0; 3], [2.0; 3], [2.0; 3]), i))
             .collect();
-        let b = Bvh::build(points).unwrap();
+        let b = build_checked(points);
         assert!(b.depth() <= 7);
-        check_containment(&b);
         // Collinear segments.
         let segs: Vec<(Tri, i32)> = (0..100)
             .map(|i| {
@@ -278,7 +325,7 @@ mod tests {
                 )
             })
             .collect();
-        check_containment(&Bvh::build(segs).unwrap());
+        build_checked(segs);
     }
 
     #[test]
@@ -291,9 +338,8 @@ mod tests {
                 (tri([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 0.0, 1.0]), i)
             })
             .collect();
-        let b = Bvh::build(tris).unwrap();
+        let b = build_checked(tris);
         assert!(b.depth() <= MAX_DEPTH, "depth {}", b.depth());
-        check_containment(&b);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! The bounding-volume hierarchy of a model: layout (this file) and top-down build (`build.rs`).
 //!
 //! Nodes live in one array, the root first; the two children of a node are adjacent. Each node
-//! carries a distance volume (RSS) for the distance and tolerance queries and an overlap volume (OBB)
-//! for collision, both fitted on the same principal axes and stored in model coordinates (a test
+//! carries a swept sphere volume (a PSS, LSS or RSS, as the model's [`VolumeKind`] chooses) for the
+//! distance and tolerance queries, and for collision when the model asks for it, and an overlap
+//! volume (OBB) for collision, both fitted on the same principal axes and stored in model coordinates (a test
 //! composes the relative pose with the volumes' axes, so no per-node frame chain is needed). Leaves
 //! hold one triangle. Triangles are stored in leaf order so that a subtree's triangles are contiguous.
 
@@ -10,14 +11,15 @@ mod build;
 
 pub(crate) use build::MAX_DEPTH;
 
-use crate::bounding_volume::{Obb, Rss};
+use crate::bounding_volume::{Obb, Ssv};
 use crate::geometry::Tri;
+use crate::model::CollisionVolume;
 
 /// One node of the hierarchy.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Node {
-    /// Distance volume.
-    pub rss: Rss,
+    /// Distance volume (and overlap volume when the model collides on swept spheres).
+    pub ssv: Ssv,
     /// Overlap volume.
     pub obb: Obb,
     /// `>= 0`: index of the first child (the second is `child + 1`). `< 0`: a leaf holding
@@ -49,6 +51,8 @@ pub(crate) struct Bvh {
     pub nodes: Vec<Node>,
     pub tris: Vec<Tri>,
     pub ids: Vec<i32>,
+    /// Which volume this model offers the collision query.
+    pub collision: CollisionVolume,
 }
 
 impl Bvh {

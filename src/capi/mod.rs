@@ -69,8 +69,8 @@ pub const PQP_ERR_BUILD_EMPTY_MODEL: c_int = -5;
 pub const PQP_ERR_NONFINITE_COORDINATE: c_int = -6;
 /// A rotation or translation entry is NaN, infinite or larger in magnitude than 1e150.
 pub const PQP_ERR_NONFINITE_POSE: c_int = -7;
-/// An argument is out of its domain: unknown contact flag, negative or NaN rel_err, abs_err or
-/// tolerance, qsize < 1.
+/// An argument is out of its domain: unknown contact flag or volume choice, negative or NaN rel_err,
+/// abs_err or tolerance, qsize < 1.
 pub const PQP_ERR_INVALID_ARGUMENT: c_int = -8;
 /// A required pointer was NULL.
 pub const PQP_ERR_NULL_POINTER: c_int = -9;

@@ -1,8 +1,24 @@
 //! Model handles and PQP's build protocol (begin, add triangles, end).
 
 use super::{boundary, deref, deref_mut, free_handle, into_handle, read_doubles, status};
-use crate::model::Model;
+use crate::error::Error;
+use crate::model::{CollisionVolume, Model, VolumeKind};
 use std::ffi::c_int;
+
+/// Volume choice (pqp_model_set_volume): rectangle swept spheres, PQP's choice and the default.
+pub const PQP_BV_RSS: c_int = 0;
+/// Volume choice (pqp_model_set_volume): point swept spheres (spheres).
+pub const PQP_BV_PSS: c_int = 1;
+/// Volume choice (pqp_model_set_volume): line swept spheres (capsules).
+pub const PQP_BV_LSS: c_int = 2;
+/// Volume choice (pqp_model_set_volume): each node takes the swept sphere volume kind whose fitted
+/// volume is smallest.
+pub const PQP_BV_HYBRID: c_int = 3;
+/// Collision volume choice (pqp_model_set_collision_volume): oriented boxes, PQP's choice and the
+/// default.
+pub const PQP_COLLIDE_OBB: c_int = 0;
+/// Collision volume choice (pqp_model_set_collision_volume): the model's swept sphere volumes.
+pub const PQP_COLLIDE_SSV: c_int = 1;
 
 /// A triangle model (opaque). Create with pqp_model_create, fill with pqp_model_begin,
 /// pqp_model_add_tri and pqp_model_end, free with pqp_model_destroy.
@@ -106,6 +122,56 @@ pub unsafe extern "C" fn pqp_model_add_tri(
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
     status(|| deref_mut(m)?.model.end())
+}
+
+/// Chooses the swept sphere volume a model's hierarchy is built with, for distance and tolerance
+/// queries (and for collision with PQP_COLLIDE_SSV). Call it before pqp_model_end; the choice stays
+/// for later builds of the model (pqp_model_begin does not reset it). Without it a model uses
+/// PQP_BV_RSS, as PQP does. Answers are the same whatever the choice; only the work differs.
+///
+/// @param m     the model.
+/// @param kind  PQP_BV_RSS, PQP_BV_PSS, PQP_BV_LSS or PQP_BV_HYBRID.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if kind is none of
+///         those (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built
+///         (the choice is not changed); PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_set_volume(m: *mut pqp_model, kind: c_int) -> c_int {
+    status(|| {
+        let m = deref_mut(m)?;
+        let kind = match kind {
+            PQP_BV_RSS => VolumeKind::Rss,
+            PQP_BV_PSS => VolumeKind::Pss,
+            PQP_BV_LSS => VolumeKind::Lss,
+            PQP_BV_HYBRID => VolumeKind::Hybrid,
+            _ => return Err(Error::InvalidArgument),
+        };
+        m.model.set_volume(kind)
+    })
+}
+
+/// Chooses the volume collision queries test a model's nodes with. Call it before pqp_model_end;
+/// the choice stays for later builds of the model. Without it a model uses PQP_COLLIDE_OBB, as PQP
+/// does. A collision query runs on swept sphere volumes only when both of its models chose
+/// PQP_COLLIDE_SSV; the pairs reported are the same either way.
+///
+/// @param m       the model.
+/// @param volume  PQP_COLLIDE_OBB or PQP_COLLIDE_SSV.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if volume is neither
+///         (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built (the
+///         choice is not changed); PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: must not run concurrently with any other call using m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_set_collision_volume(m: *mut pqp_model, volume: c_int) -> c_int {
+    status(|| {
+        let m = deref_mut(m)?;
+        let volume = match volume {
+            PQP_COLLIDE_OBB => CollisionVolume::Obb,
+            PQP_COLLIDE_SSV => CollisionVolume::Ssv,
+            _ => return Err(Error::InvalidArgument),
+        };
+        m.model.set_collision_volume(volume)
+    })
 }
 
 /// The number of triangles a model holds (added so far, or in the built model).

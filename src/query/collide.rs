@@ -3,10 +3,11 @@
 use super::traversal::{descend_first, NodePair, PairStack};
 use super::{prepare, Stats};
 use crate::bounding_volume::OverlapVolume;
+use crate::bvh::{Bvh, Node};
 use crate::error::Error;
 use crate::geometry::{tri_overlap, Tri};
-use crate::math::Pose;
-use crate::model::Model;
+use crate::math::{Pose, RelPose};
+use crate::model::{CollisionVolume, Model};
 use std::time::Instant;
 
 /// Report every overlapping pair, or stop at the first (PQP's `PQP_ALL_CONTACTS` = 1 and
@@ -99,6 +100,27 @@ pub fn collide_into(
     let start = Instant::now();
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     result.pairs.clear();
+    let mut stats = if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv
+    {
+        search(result, b1, b2, &rel, mode, |n| &n.ssv)
+    } else {
+        search(result, b1, b2, &rel, mode, |n| &n.obb)
+    };
+    stats.query_time_secs = start.elapsed().as_secs_f64();
+    result.stats = stats;
+    Ok(())
+}
+
+/// The search of [`collide_into`] on the overlap volume `volume` picks from each node: depth first,
+/// descending the larger volume, testing the triangles of overlapping leaf pairs.
+fn search<V: OverlapVolume>(
+    result: &mut CollideResult,
+    b1: &Bvh,
+    b2: &Bvh,
+    rel: &RelPose,
+    mode: ContactMode,
+    volume: impl Fn(&Node) -> &V,
+) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
     stack.push(NodePair {
@@ -106,11 +128,12 @@ pub fn collide_into(
         b: 0,
         bound: 0.0,
     });
-    'search: while let Some(p) = stack.pop() {
+    while let Some(p) = stack.pop() {
         let na = &b1.nodes[p.a as usize];
         let nb = &b2.nodes[p.b as usize];
+        let (va, vb) = (volume(na), volume(nb));
         stats.bv_tests += 1;
-        if !OverlapVolume::overlap(&na.obb, &nb.obb, &rel) {
+        if !V::overlap(va, vb, rel) {
             continue;
         }
         if let (Some(ta), Some(tb)) = (na.leaf_triangle(), nb.leaf_triangle()) {
@@ -123,12 +146,12 @@ pub fn collide_into(
                     id2: b2.ids[tb],
                 });
                 if mode == ContactMode::First {
-                    break 'search;
+                    break;
                 }
             }
             continue;
         }
-        if descend_first(na, nb, &na.obb, &nb.obb) {
+        if descend_first(na, nb, va, vb) {
             let c = na.first_child() as u32;
             stack.push(NodePair { a: c + 1, ..p });
             stack.push(NodePair { a: c, ..p });
@@ -138,7 +161,5 @@ pub fn collide_into(
             stack.push(NodePair { b: c, ..p });
         }
     }
-    stats.query_time_secs = start.elapsed().as_secs_f64();
-    result.stats = stats;
-    Ok(())
+    stats
 }

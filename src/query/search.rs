@@ -157,8 +157,8 @@ impl<'a> ClosestSearch<'a> {
     fn bound(&mut self, a: u32, b: u32, cutoff: f64) -> f64 {
         self.stats.bv_tests += 1;
         DistanceVolume::distance_below(
-            &self.b1.nodes[a as usize].rss,
-            &self.b2.nodes[b as usize].rss,
+            &self.b1.nodes[a as usize].ssv,
+            &self.b2.nodes[b as usize].ssv,
             &self.rel,
             cutoff,
         )
@@ -170,7 +170,7 @@ impl<'a> ClosestSearch<'a> {
     fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
         let na = &self.b1.nodes[p.a as usize];
         let nb = &self.b2.nodes[p.b as usize];
-        let (c1, c2) = if descend_first(na, nb, &na.rss, &nb.rss) {
+        let (c1, c2) = if descend_first(na, nb, &na.ssv, &nb.ssv) {
             let Some(ta) = na.leaf_triangle() else {
                 let c = na.first_child() as u32;
                 return Some(self.bounded_pair((c, p.b), (c + 1, p.b), cutoff));

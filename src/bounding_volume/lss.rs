@@ -1,0 +1,39 @@
+//! Line swept sphere fit: a segment along the axis of largest spread, swept by the smallest sphere
+//! that reaches every point.
+
+use super::ssv::{allowance, ball_centre, Ssv};
+use crate::math::{Mat3, Vec3};
+
+/// A capsule containing every point (not empty), its segment along `axes.column(0)`.
+pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
+    // The segment's line: through the centre of a small disc around the points' projections on the
+    // plane of the other two axes; the radius must reach the farthest of them.
+    let (c, r2) = ball_centre(points.len(), |i| {
+        let q = axes.tr_mul(&points[i]);
+        Vec3::new(0.0, q.y, q.z)
+    });
+    let r = r2.sqrt();
+    // Each point may lie beyond an end by its allowance sqrt(r^2 - rho^2) (rho its distance from
+    // the line) and still be in the end cap: the segment need only reach each projection minus (or
+    // plus) it. These extents are the least that keep every point in.
+    let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in points {
+        let q = axes.tr_mul(p);
+        let (dy, dz) = (q.y - c.y, q.z - c.z);
+        let h = allowance(r, (dy * dy + dz * dz).sqrt());
+        x0 = x0.min(q.x + h);
+        x1 = x1.max(q.x - h);
+    }
+    // Crossed extents mean every point's reach overlaps there: a zero-length segment in the middle.
+    if x0 > x1 {
+        let m = 0.5 * x0 + 0.5 * x1;
+        (x0, x1) = (m, m);
+    }
+    Ssv {
+        axes: *axes,
+        origin: axes * Vec3::new(x0, c.y, c.z),
+        lengths: [(x1 - x0).max(0.0), 0.0],
+        radius: r,
+    }
+    .cover(points)
+}

@@ -1,0 +1,278 @@
+//! Swept sphere volumes: the Minkowski sum of a core primitive (a point, a segment or a rectangle)
+//! and a sphere, after Larsen, Gottschalk, Lin and Manocha. The three kinds are one family: a point
+//! is a rectangle with both sides 0, a segment one with its second side 0. So one type holds them
+//! all, a hierarchy node keeps one distance-volume field whatever kind its builder chose, and the
+//! distance between any two is the distance between their cores minus both radii.
+//!
+//! The fits live one per kind (`pss.rs`, `lss.rs`, `rss.rs`); this file holds the type, the
+//! containment test they are measured by, and the distance.
+
+use super::rect_distance::rect_distance;
+use super::{BoundingVolume, DistanceVolume, OverlapVolume};
+use crate::geometry::segment_segment;
+use crate::math::{Mat3, RelPose, Vec3};
+
+/// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SsvKind {
+    /// Point swept sphere (PSS): a sphere. Both sides are 0.
+    Point,
+    /// Line swept sphere (LSS): a segment along the first axis swept by a sphere (a capsule).
+    /// The second side is 0.
+    Line,
+    /// Rectangle swept sphere (RSS): a rectangle on the first two axes swept by a sphere.
+    Rect,
+}
+
+/// Swept sphere volume: the set of points within `radius` of its core.
+///
+/// The core spans `origin + s * axes.column(0) + t * axes.column(1)` for `s` in `[0, lengths[0]]`,
+/// `t` in `[0, lengths[1]]`; `axes.column(2)` is the rectangle's normal. With both sides 0 it is a
+/// point swept sphere (the core is `origin`), with the second side 0 a line swept sphere. The kind
+/// is read from the sides rather than stored: it only chooses the fastest exact distance routine,
+/// and a stored one would cost 8 bytes per volume and an invariant to keep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ssv {
+    /// Orthonormal axes (columns) in the model frame.
+    pub axes: Mat3,
+    /// The core's corner (the centre of a PSS, an end of an LSS's segment), in the model frame.
+    pub origin: Vec3,
+    /// Side lengths along the first two axes (`>= 0`).
+    pub lengths: [f64; 2],
+    /// Radius of the swept sphere.
+    pub radius: f64,
+}
+
+/// Rounding allowance of a distance bound, relative to the magnitudes that enter it: composing the
+/// pose and the frames costs a few tens of roundings, each at most `EPSILON` of those magnitudes.
+const BOUND_SLACK: f64 = 64.0 * f64::EPSILON;
+
+impl Ssv {
+    /// The tightest volume of `kind` on the given axes (orthonormal right-handed columns, in
+    /// decreasing order of spread) that contains every point of `points` (not empty): a sphere, a
+    /// segment along the first axis, or a rectangle on the first two, each with the smallest radius
+    /// its fit finds that reaches every point, as [`contains`](BoundingVolume::contains) measures.
+    pub fn fit(kind: SsvKind, axes: &Mat3, points: &[Vec3]) -> Ssv {
+        if points.is_empty() {
+            // The builder never asks for this; an empty volume at the origin rather than NaNs.
+            return Ssv {
+                axes: *axes,
+                origin: Vec3::zeros(),
+                lengths: [0.0; 2],
+                radius: 0.0,
+            };
+        }
+        match kind {
+            SsvKind::Point => super::pss::fit(axes, points),
+            SsvKind::Line => super::lss::fit(axes, points),
+            SsvKind::Rect => super::rss::fit(axes, points),
+        }
+    }
+
+    /// What the core is: a point (both sides 0), a segment along the first axis (second side 0),
+    /// or a rectangle.
+    #[inline(always)]
+    pub fn kind(&self) -> SsvKind {
+        if self.lengths[1] != 0.0 {
+            SsvKind::Rect
+        } else if self.lengths[0] != 0.0 {
+            SsvKind::Line
+        } else {
+            SsvKind::Point
+        }
+    }
+
+    /// Distance from `p` (model frame) to the core. A point and a segment are rectangles with zero
+    /// sides, for which the clamps below pin the coordinates to 0.
+    #[inline]
+    pub(crate) fn core_distance(&self, p: &Vec3) -> f64 {
+        let q = self.axes.tr_mul(&(p - self.origin));
+        let dx = outside(q.x, 0.0, self.lengths[0]);
+        let dy = outside(q.y, 0.0, self.lengths[1]);
+        (dx * dx + dy * dy + q.z * q.z).sqrt()
+    }
+
+    /// Takes the radius up to every point's distance from the core, exactly as `contains` measures
+    /// it: the fits' rounding may otherwise leave a point a few ulps out.
+    pub(super) fn cover(mut self, points: &[Vec3]) -> Ssv {
+        for p in points {
+            self.radius = self.radius.max(self.core_distance(p));
+        }
+        self
+    }
+
+    /// Volume of the solid in cubes of side `unit` (> 0; chosen near the volume's size so that
+    /// cubing huge coordinates does not overflow). Steiner's formula for a flat convex core: twice
+    /// its area times r, plus pi times half its perimeter times r^2, plus the ball.
+    pub fn volume(&self, unit: f64) -> f64 {
+        let (a, b, r) = (
+            self.lengths[0] / unit,
+            self.lengths[1] / unit,
+            self.radius / unit,
+        );
+        let pi = std::f64::consts::PI;
+        r * (2.0 * a * b + r * (pi * (a + b) + r * (4.0 / 3.0 * pi)))
+    }
+
+    /// The distance between the two cores, `b` posed by `rel` in `a`'s frame, by the cheapest
+    /// routine for the pair of kinds; all are exact up to rounding. With `enough > 0`, any value
+    /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
+    #[inline]
+    fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
+        use SsvKind::{Line, Point, Rect};
+        match (a.kind(), b.kind()) {
+            (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
+            (Point, _) => b.core_distance(&rel.apply_inverse(&a.origin)),
+            (_, Point) => a.core_distance(&rel.apply(&b.origin)),
+            (Line, Line) => {
+                let p1 = a.origin + a.axes.column(0) * a.lengths[0];
+                let q0 = rel.apply(&b.origin);
+                let q1 = q0 + rel.rot * (b.axes.column(0) * b.lengths[0]);
+                segment_segment(&a.origin, &p1, &q0, &q1).distance
+            }
+            (Line | Rect, Line | Rect) => {
+                // b's core in the frame of a's core: axes A^T rot B, corner A^T (rot ob + trans - oa).
+                let m = a.axes.tr_mul(&rel.rot);
+                let r = m * b.axes;
+                let t = m * b.origin + a.axes.tr_mul(&(rel.trans - a.origin));
+                rect_distance(&r, &t, a.lengths, b.lengths, enough, cutoff)
+            }
+        }
+    }
+}
+
+/// How far `x` is outside `[lo, hi]`.
+#[inline(always)]
+fn outside(x: f64, lo: f64, hi: f64) -> f64 {
+    if x < lo {
+        lo - x
+    } else if x > hi {
+        x - hi
+    } else {
+        0.0
+    }
+}
+
+/// How far a point at height `dz` above the rectangle's plane may lie beside the rectangle, in the
+/// plane, and stay within `r` of it: `sqrt(r^2 - dz^2)`, factored to keep precision near the caps.
+#[inline(always)]
+pub(super) fn allowance(r: f64, dz: f64) -> f64 {
+    ((r - dz) * (r + dz)).max(0.0).sqrt()
+}
+
+impl BoundingVolume for Ssv {
+    fn contains(&self, p: &Vec3, eps: f64) -> bool {
+        self.core_distance(p) <= self.radius + eps
+    }
+
+    fn size(&self) -> f64 {
+        (self.lengths[0] * self.lengths[0] + self.lengths[1] * self.lengths[1]).sqrt()
+            + 2.0 * self.radius
+    }
+}
+
+impl Ssv {
+    /// Rounding allowance of a bound on `a` and `b` posed by `rel`.
+    #[inline(always)]
+    fn slack(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
+        let scale = a.origin.abs().sum()
+            + b.origin.abs().sum()
+            + rel.trans.abs().sum()
+            + a.lengths[0]
+            + a.lengths[1]
+            + b.lengths[0]
+            + b.lengths[1];
+        BOUND_SLACK * scale
+    }
+
+    /// The centre of the core and the radius of a ball around the whole volume.
+    #[inline(always)]
+    fn ball(&self) -> (Vec3, f64) {
+        let (a, b) = (0.5 * self.lengths[0], 0.5 * self.lengths[1]);
+        let c = self.origin + self.axes.column(0) * a + self.axes.column(1) * b;
+        (c, (a * a + b * b).sqrt() + self.radius)
+    }
+}
+
+impl DistanceVolume for Ssv {
+    #[inline]
+    fn distance(a: &Self, b: &Self, rel: &RelPose) -> f64 {
+        Ssv::distance_below(a, b, rel, f64::INFINITY)
+    }
+
+    #[inline]
+    fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
+        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
+        let slack = Ssv::slack(a, b, rel);
+        // The core distance that makes the bound reach the cutoff, with a second slack so that a
+        // core distance at or above it proves the bound's true value is at least the cutoff.
+        let core_cutoff = cutoff + a.radius + b.radius + 2.0 * slack;
+        let d = Ssv::cores_distance(a, b, rel, 0.0, core_cutoff);
+        let bound = (d - a.radius - b.radius - slack).max(0.0);
+        if d >= core_cutoff {
+            bound.max(cutoff)
+        } else {
+            bound
+        }
+    }
+}
+
+impl OverlapVolume for Ssv {
+    /// Swept sphere volumes may meet exactly when their cores are within both radii (and the
+    /// rounding slack of the distance bound): never false when they share a point. Pairs whose
+    /// enclosing balls are apart are rejected first, and the core distance stops at the first pair
+    /// of points close enough.
+    #[inline]
+    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
+        let (ca, ra) = a.ball();
+        let (cb, rb) = b.ball();
+        let slack = Ssv::slack(a, b, rel);
+        if (ca - rel.apply(&cb)).norm() > ra + rb + slack {
+            return false;
+        }
+        let reach = a.radius + b.radius + slack;
+        // Stop as soon as a pair of points within reach is found, or the distance is seen to be
+        // at least the reach (then a value at least the reach comes back: equality errs towards
+        // overlap, which costs only work).
+        Ssv::cores_distance(a, b, rel, reach, reach) <= reach
+    }
+}
+
+/// The centre of a small ball around `n` points given by `at(i)`, in whatever coordinates `at`
+/// returns: the centre of their bounding box, then a few steps of Badoiu and Clarkson's iteration
+/// (move towards the farthest point by a shrinking fraction), keeping the centre whose farthest
+/// point is nearest. The box centre is within sqrt(3)/2 of optimal; the steps usually shave a few
+/// per cent off round and irregular sets. Returns the centre and the squared radius it needs.
+pub(super) fn ball_centre(n: usize, at: impl Fn(usize) -> Vec3) -> (Vec3, f64) {
+    let first = at(0);
+    let (mut lo, mut hi) = (first, first);
+    for i in 1..n {
+        let q = at(i);
+        lo = lo.inf(&q);
+        hi = hi.sup(&q);
+    }
+    // Halve before adding: no overflow whatever the magnitudes.
+    let mut c = lo * 0.5 + hi * 0.5;
+    let farthest = |c: &Vec3| {
+        let mut best = (0usize, -1.0f64);
+        for i in 0..n {
+            let d = (at(i) - c).norm_squared();
+            if d > best.1 {
+                best = (i, d);
+            }
+        }
+        best
+    };
+    let (mut far, mut r2) = farthest(&c);
+    let mut best = (c, r2);
+    // The box centre is already close, so start with small steps (1/4, 1/5, ...) rather than the
+    // iteration's 1/2: the point is to settle between the few farthest points.
+    for k in 4..12 {
+        c += (at(far) - c) / k as f64;
+        (far, r2) = farthest(&c);
+        if r2 < best.1 {
+            best = (c, r2);
+        }
+    }
+    best
+}
