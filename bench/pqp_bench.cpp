@@ -966,7 +966,7 @@ void run_strategies(Case& c, const std::string& workload, int reps) {
         const char* name;
         int strategy, qsize;
     };
-    const size_t bfs_poses = std::min<size_t>(c.size(), 5);
+    const size_t bfs_poses = std::min<size_t>(c.size(), 3);
     const Variant variants[] = {
         {"auto (default: priority, unbounded queue)", PQP_SEARCH_AUTO, 0},
         {"priority, unbounded queue", PQP_SEARCH_PRIORITY, 0},
@@ -985,7 +985,8 @@ void run_strategies(Case& c, const std::string& workload, int reps) {
             std::vector<double> t(n, std::numeric_limits<double>::infinity());
             double bv = 0, tri = 0, sum = 0;
             int rc = PQP_OK;
-            for (int rep = 0; rep < reps; ++rep) {
+            const int runs = v.strategy == PQP_SEARCH_BREADTH_FIRST ? 1 : reps;
+            for (int rep = 0; rep < runs; ++rep) {
                 pqp_distance_result* r = pqp_distance_result_create();
                 for (size_t i = 0; i < n; ++i) {
                     const auto& p = c.poses[i];
