@@ -118,7 +118,7 @@ impl Ssv {
     /// routine for the pair of kinds; all are exact up to rounding. With `enough > 0`, any value
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
-    fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
+    pub(crate) fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
         use SsvKind::{Line, Point, Rect};
         match (a.kind(), b.kind()) {
             (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
@@ -202,18 +202,163 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         let slack = Ssv::slack(a, b, rel);
+        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
+            Ssv::cores_distance(a, b, rel, 0.0, core_cutoff)
+        })
+    }
+}
+
+/// A volume of model 1 held fixed while volumes of model 2 are bounded against it: the parts of the
+/// composition `A^T rot` and `A^T (trans - oa)` that do not depend on model 2's volume.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FixedFirst {
+    m: Mat3,
+    c: Vec3,
+}
+
+impl Ssv {
+    /// The part of the rounding allowance of a bound that this volume brings: its corner's and its
+    /// sides' magnitudes (see `slack`; the pose brings `|trans|`).
+    #[inline(always)]
+    pub(crate) fn slack_scale(&self) -> f64 {
+        self.origin.abs().sum() + self.lengths[0] + self.lengths[1]
+    }
+
+    /// The allowance of a pair of volumes and a pose whose scales sum to `scale`.
+    #[inline(always)]
+    pub(crate) fn slack_of(scale: f64) -> f64 {
+        BOUND_SLACK * scale
+    }
+
+    /// The bound from the core distance that `core(core_cutoff)` computes (exact below
+    /// `core_cutoff`, at least it otherwise), for volumes whose radii sum to `radii`.
+    #[inline(always)]
+    fn bound_from(radii: f64, slack: f64, cutoff: f64, core: impl FnOnce(f64) -> f64) -> f64 {
+        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         // The core distance that makes the bound reach the cutoff, with a second slack so that a
         // core distance at or above it proves the bound's true value is at least the cutoff.
-        let core_cutoff = cutoff + a.radius + b.radius + 2.0 * slack;
-        let d = Ssv::cores_distance(a, b, rel, 0.0, core_cutoff);
-        let bound = (d - a.radius - b.radius - slack).max(0.0);
+        let core_cutoff = cutoff + radii + 2.0 * slack;
+        let d = core(core_cutoff);
+        let bound = (d - radii - slack).max(0.0);
         if d >= core_cutoff {
             bound.max(cutoff)
         } else {
             bound
         }
+    }
+
+    /// This volume (of model 2) in model 1's frame.
+    #[inline(always)]
+    pub(crate) fn posed(&self, rel: &RelPose) -> Ssv {
+        Ssv {
+            axes: rel.rot * self.axes,
+            origin: rel.apply(&self.origin),
+            ..*self
+        }
+    }
+
+    /// As [`DistanceVolume::distance_below`] for `a` and `b` both in the same frame (`b` brought
+    /// there by [`posed`](Ssv::posed)); `scale` is the sum of their [`slack_scale`](Ssv::slack_scale)s
+    /// (taken before posing) and the pose's translation's.
+    #[inline(always)]
+    pub(crate) fn distance_below_posed(a: &Ssv, b: &Ssv, scale: f64, cutoff: f64) -> f64 {
+        use SsvKind::{Line, Point, Rect};
+        let slack = Ssv::slack_of(scale);
+        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
+            match (a.kind(), b.kind()) {
+                (Point, Point) => (a.origin - b.origin).norm(),
+                (Point, _) => b.core_distance(&a.origin),
+                (_, Point) => a.core_distance(&b.origin),
+                (Line, Line) => {
+                    let p1 = a.origin + a.axes.column(0) * a.lengths[0];
+                    let q1 = b.origin + b.axes.column(0) * b.lengths[0];
+                    segment_segment(&a.origin, &p1, &b.origin, &q1).distance
+                }
+                (Line | Rect, Line | Rect) => {
+                    let r = a.axes.tr_mul(&b.axes);
+                    let t = a.axes.tr_mul(&(b.origin - a.origin));
+                    rect_distance(&r, &t, a.lengths, b.lengths, 0.0, core_cutoff)
+                }
+            }
+        })
+    }
+
+    /// Prepares `a` (model 1's) to be bounded against several volumes of model 2.
+    #[inline(always)]
+    pub(crate) fn fixed_first(a: &Ssv, rel: &RelPose) -> FixedFirst {
+        FixedFirst {
+            m: a.axes.tr_mul(&rel.rot),
+            c: a.axes.tr_mul(&(rel.trans - a.origin)),
+        }
+    }
+
+    /// As [`DistanceVolume::distance_below`] (the same value, bit for bit) with `a` prepared by
+    /// [`fixed_first`](Ssv::fixed_first); `scale` as for [`distance_below_posed`](Ssv::distance_below_posed).
+    #[inline(always)]
+    pub(crate) fn distance_below_fixed_first(
+        a: &Ssv,
+        fa: &FixedFirst,
+        b: &Ssv,
+        rel: &RelPose,
+        scale: f64,
+        cutoff: f64,
+    ) -> f64 {
+        use SsvKind::{Line, Rect};
+        let slack = Ssv::slack_of(scale);
+        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
+            match (a.kind(), b.kind()) {
+                (Rect, Line | Rect) | (Line, Rect) => {
+                    let r = fa.m * b.axes;
+                    let t = fa.m * b.origin + fa.c;
+                    rect_distance(&r, &t, a.lengths, b.lengths, 0.0, core_cutoff)
+                }
+                _ => Ssv::cores_distance(a, b, rel, 0.0, core_cutoff),
+            }
+        })
+    }
+
+    /// The rectangle swept sphere around one triangle, radius 0 up to rounding: the rectangle on its
+    /// longest edge whose other side reaches the opposite vertex (whose foot lies on that edge, as
+    /// it is the longest). A leaf's volume, computed on use rather than stored.
+    #[inline]
+    pub fn triangle(t: &[Vec3; 3]) -> Ssv {
+        let e = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+        let n2 = [
+            e[0].norm_squared(),
+            e[1].norm_squared(),
+            e[2].norm_squared(),
+        ];
+        let i = if n2[0] >= n2[1] && n2[0] >= n2[2] {
+            0
+        } else if n2[1] >= n2[2] {
+            1
+        } else {
+            2
+        };
+        let (p, q, r) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+        let len = n2[i].sqrt();
+        let x = if len > 0.0 { e[i] / len } else { Vec3::x() };
+        let w = r - p;
+        let n = x.cross(&w);
+        let nn = n.norm();
+        let z = if nn > 0.0 {
+            n / nn
+        } else {
+            // A segment or a point: any normal.
+            let k = x.iamin();
+            let mut u = Vec3::zeros();
+            u[k] = 1.0;
+            x.cross(&u).normalize()
+        };
+        let y = z.cross(&x);
+        Ssv {
+            axes: Mat3::from_columns(&[x, y, z]),
+            origin: p,
+            lengths: [len, y.dot(&w).max(0.0)],
+            radius: 0.0,
+        }
+        .cover(&[q, r])
     }
 }
 

@@ -2,13 +2,13 @@
 //! fixed-size stack, so that no query allocates.
 
 use crate::bounding_volume::BoundingVolume;
-use crate::bvh::{Node, MAX_DEPTH};
+use crate::bvh::{NodeRef, MAX_DEPTH};
 
 /// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NodePair {
-    pub a: u32,
-    pub b: u32,
+    pub a: NodeRef,
+    pub b: NodeRef,
     pub bound: f64,
 }
 
@@ -52,11 +52,11 @@ impl PairStack {
 /// Which side of a BVTT node to descend: `true` for model 1's node. Descend the larger volume, or
 /// whichever is not a leaf (both leaves is handled by the caller).
 #[inline]
-pub(crate) fn descend_first<B: BoundingVolume>(a: &Node, b: &Node, va: &B, vb: &B) -> bool {
-    if b.child < 0 {
+pub(crate) fn descend_first<B: BoundingVolume>(a: NodeRef, b: NodeRef, va: &B, vb: &B) -> bool {
+    if b < 0 {
         return true;
     }
-    if a.child < 0 {
+    if a < 0 {
         return false;
     }
     va.size() >= vb.size()
