@@ -12,7 +12,7 @@ use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
 use crate::model::Model;
-use crate::query::search::{expand, root_pair};
+use crate::query::search::{expand, root_pair, LeafVolumes};
 
 /// Sizes of the minimal BVTT of a distance query (see the module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -65,6 +65,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
     };
     let root = root_pair(b1, b2, rel, f64::INFINITY);
     let mut stack = vec![root];
+    let mut leaves = LeafVolumes::default();
     while let Some(p) = stack.pop() {
         // Written so that a NaN bound is not descended.
         let below = p.bound < d;
@@ -72,7 +73,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
             continue;
         }
         out.nodes_below += 1;
-        match expand(b1, b2, rel, p.a, p.b, f64::INFINITY) {
+        match expand(b1, b2, rel, p.a, p.b, f64::INFINITY, &mut leaves) {
             None => out.leaf_pairs_below += 1,
             Some(children) => {
                 out.bound_tests += 2;

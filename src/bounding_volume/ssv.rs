@@ -118,7 +118,7 @@ impl Ssv {
     /// routine for the pair of kinds; all are exact up to rounding. With `enough > 0`, any value
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
-    pub(crate) fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
+    fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
         use SsvKind::{Line, Point, Rect};
         match (a.kind(), b.kind()) {
             (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
@@ -209,28 +209,7 @@ impl DistanceVolume for Ssv {
     }
 }
 
-/// A volume of model 1 held fixed while volumes of model 2 are bounded against it: the parts of the
-/// composition `A^T rot` and `A^T (trans - oa)` that do not depend on model 2's volume.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct FixedFirst {
-    m: Mat3,
-    c: Vec3,
-}
-
 impl Ssv {
-    /// The part of the rounding allowance of a bound that this volume brings: its corner's and its
-    /// sides' magnitudes (see `slack`; the pose brings `|trans|`).
-    #[inline(always)]
-    pub(crate) fn slack_scale(&self) -> f64 {
-        self.origin.abs().sum() + self.lengths[0] + self.lengths[1]
-    }
-
-    /// The allowance of a pair of volumes and a pose whose scales sum to `scale`.
-    #[inline(always)]
-    pub(crate) fn slack_of(scale: f64) -> f64 {
-        BOUND_SLACK * scale
-    }
-
     /// The bound from the core distance that `core(core_cutoff)` computes (exact below
     /// `core_cutoff`, at least it otherwise), for volumes whose radii sum to `radii`.
     #[inline(always)]
@@ -246,76 +225,6 @@ impl Ssv {
         } else {
             bound
         }
-    }
-
-    /// This volume (of model 2) in model 1's frame.
-    #[inline(always)]
-    pub(crate) fn posed(&self, rel: &RelPose) -> Ssv {
-        Ssv {
-            axes: rel.rot * self.axes,
-            origin: rel.apply(&self.origin),
-            ..*self
-        }
-    }
-
-    /// As [`DistanceVolume::distance_below`] for `a` and `b` both in the same frame (`b` brought
-    /// there by [`posed`](Ssv::posed)); `scale` is the sum of their [`slack_scale`](Ssv::slack_scale)s
-    /// (taken before posing) and the pose's translation's.
-    #[inline(always)]
-    pub(crate) fn distance_below_posed(a: &Ssv, b: &Ssv, scale: f64, cutoff: f64) -> f64 {
-        use SsvKind::{Line, Point, Rect};
-        let slack = Ssv::slack_of(scale);
-        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
-            match (a.kind(), b.kind()) {
-                (Point, Point) => (a.origin - b.origin).norm(),
-                (Point, _) => b.core_distance(&a.origin),
-                (_, Point) => a.core_distance(&b.origin),
-                (Line, Line) => {
-                    let p1 = a.origin + a.axes.column(0) * a.lengths[0];
-                    let q1 = b.origin + b.axes.column(0) * b.lengths[0];
-                    segment_segment(&a.origin, &p1, &b.origin, &q1).distance
-                }
-                (Line | Rect, Line | Rect) => {
-                    let r = a.axes.tr_mul(&b.axes);
-                    let t = a.axes.tr_mul(&(b.origin - a.origin));
-                    rect_distance(&r, &t, a.lengths, b.lengths, 0.0, core_cutoff)
-                }
-            }
-        })
-    }
-
-    /// Prepares `a` (model 1's) to be bounded against several volumes of model 2.
-    #[inline(always)]
-    pub(crate) fn fixed_first(a: &Ssv, rel: &RelPose) -> FixedFirst {
-        FixedFirst {
-            m: a.axes.tr_mul(&rel.rot),
-            c: a.axes.tr_mul(&(rel.trans - a.origin)),
-        }
-    }
-
-    /// As [`DistanceVolume::distance_below`] (the same value, bit for bit) with `a` prepared by
-    /// [`fixed_first`](Ssv::fixed_first); `scale` as for [`distance_below_posed`](Ssv::distance_below_posed).
-    #[inline(always)]
-    pub(crate) fn distance_below_fixed_first(
-        a: &Ssv,
-        fa: &FixedFirst,
-        b: &Ssv,
-        rel: &RelPose,
-        scale: f64,
-        cutoff: f64,
-    ) -> f64 {
-        use SsvKind::{Line, Rect};
-        let slack = Ssv::slack_of(scale);
-        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
-            match (a.kind(), b.kind()) {
-                (Rect, Line | Rect) | (Line, Rect) => {
-                    let r = fa.m * b.axes;
-                    let t = fa.m * b.origin + fa.c;
-                    rect_distance(&r, &t, a.lengths, b.lengths, 0.0, core_cutoff)
-                }
-                _ => Ssv::cores_distance(a, b, rel, 0.0, core_cutoff),
-            }
-        })
     }
 
     /// The rectangle swept sphere around one triangle, radius 0 up to rounding: the rectangle on its

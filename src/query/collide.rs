@@ -1,6 +1,6 @@
 //! Collision: which triangle pairs of two posed models overlap.
 
-use super::traversal::{descend_first, NodePair, PairStack};
+use super::traversal::{descend_first, LeafCache, NodePair, PairStack};
 use super::{prepare, Stats};
 use crate::bounding_volume::OverlapVolume;
 use crate::bvh::{leaf_triangle, Bvh, NodeRef};
@@ -123,13 +123,17 @@ fn search<V: OverlapVolume>(
 ) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
+    let (mut leaf1, mut leaf2) = (LeafCache::default(), LeafCache::default());
     stack.push(NodePair {
         a: b1.root(),
         b: b2.root(),
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
-        let (va, vb) = (volume(b1, p.a), volume(b2, p.b));
+        let (va, vb) = (
+            leaf1.get(p.a, |r| volume(b1, r)),
+            leaf2.get(p.b, |r| volume(b2, r)),
+        );
         stats.bv_tests += 1;
         if !V::overlap(&va, &vb, rel) {
             continue;

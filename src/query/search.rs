@@ -7,7 +7,7 @@
 //! nodes in increasing order of bound, so it expands no node whose bound is above the final distance:
 //! it does the least work any search with these volumes can do (the minimal BVTT).
 
-use super::traversal::{NodePair, PairStack};
+use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
 use crate::bounding_volume::{DistanceVolume, Ssv};
 use crate::bvh::{leaf_triangle, Bvh, NodeRef};
@@ -107,6 +107,14 @@ pub(crate) struct ClosestSearch<'a> {
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
     pub pruned_min: f64,
+    leaves: LeafVolumes,
+}
+
+/// Recently met leaves' volumes of each model (see [`LeafCache`]).
+#[derive(Default)]
+pub(crate) struct LeafVolumes {
+    first: LeafCache<Ssv>,
+    second: LeafCache<Ssv>,
 }
 
 impl<'a> ClosestSearch<'a> {
@@ -126,6 +134,7 @@ impl<'a> ClosestSearch<'a> {
             },
             stats: Stats::default(),
             pruned_min: f64::INFINITY,
+            leaves: LeafVolumes::default(),
         };
         if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.num_tris() && b < b2.num_tris()) {
             s.test_triangles(ta, tb);
@@ -157,7 +166,15 @@ impl<'a> ClosestSearch<'a> {
     /// their bounds (exact below `cutoff`), nearer first.
     #[inline]
     fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
-        match expand(self.b1, self.b2, &self.rel, p.a, p.b, cutoff) {
+        match expand(
+            self.b1,
+            self.b2,
+            &self.rel,
+            p.a,
+            p.b,
+            cutoff,
+            &mut self.leaves,
+        ) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;
                 Some(if y.bound < x.bound { [y, x] } else { [x, y] })
@@ -336,9 +353,7 @@ pub(crate) fn root_pair(b1: &Bvh, b2: &Bvh, rel: &RelPose, cutoff: f64) -> NodeP
 /// The two children of the BVTT node `(a, b)` with their bounds (exact below `cutoff`, at least
 /// `cutoff` otherwise), or `None` for a pair of leaves. The descent rule: split model 1's node when
 /// model 2's is a leaf, model 2's when model 1's is, else the one with the larger volume (model 1's
-/// on a tie). The side not split is the same for both children, so its part of the composition
-/// with the relative pose is done once: model 2's volume is brought into model 1's frame, or model
-/// 1's volume's frame is composed with the pose.
+/// on a tie). Leaves' volumes (computed from their triangles) go through `leaves`.
 #[inline]
 pub(crate) fn expand(
     b1: &Bvh,
@@ -347,6 +362,7 @@ pub(crate) fn expand(
     a: NodeRef,
     b: NodeRef,
     cutoff: f64,
+    leaves: &mut LeafVolumes,
 ) -> Option<[NodePair; 2]> {
     let split_first = if b < 0 {
         if a < 0 {
@@ -358,37 +374,20 @@ pub(crate) fn expand(
     } else {
         b1.nodes[a as usize].ssv_size() >= b2.nodes[b as usize].ssv_size()
     };
-    let trans = rel.trans.abs().sum();
+    let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
     Some(if split_first {
-        let fixed = b2.ssv(b);
-        let scale = fixed.slack_scale() + trans;
-        let posed = fixed.posed(rel);
-        b1.nodes[a as usize].children.map(|c| {
-            let v = b1.ssv(c);
-            NodePair {
-                a: c,
-                b,
-                bound: Ssv::distance_below_posed(&v, &posed, v.slack_scale() + scale, cutoff),
-            }
+        let fixed = leaves.second.get(b, ssv2);
+        b1.nodes[a as usize].children.map(|c| NodePair {
+            a: c,
+            b,
+            bound: DistanceVolume::distance_below(&leaves.first.get(c, ssv1), &fixed, rel, cutoff),
         })
     } else {
-        let fixed = b1.ssv(a);
-        let scale = fixed.slack_scale() + trans;
-        let prepared = Ssv::fixed_first(&fixed, rel);
-        b2.nodes[b as usize].children.map(|c| {
-            let v = b2.ssv(c);
-            NodePair {
-                a,
-                b: c,
-                bound: Ssv::distance_below_fixed_first(
-                    &fixed,
-                    &prepared,
-                    &v,
-                    rel,
-                    v.slack_scale() + scale,
-                    cutoff,
-                ),
-            }
+        let fixed = leaves.first.get(a, ssv1);
+        b2.nodes[b as usize].children.map(|c| NodePair {
+            a,
+            b: c,
+            bound: DistanceVolume::distance_below(&fixed, &leaves.second.get(c, ssv2), rel, cutoff),
         })
     })
 }

@@ -2,7 +2,7 @@
 //! fixed-size stack, so that no query allocates.
 
 use crate::bounding_volume::BoundingVolume;
-use crate::bvh::{NodeRef, MAX_DEPTH};
+use crate::bvh::{leaf_triangle, NodeRef, MAX_DEPTH};
 
 /// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.
 #[derive(Clone, Copy, Debug, Default)]
@@ -60,4 +60,41 @@ pub(crate) fn descend_first<B: BoundingVolume>(a: NodeRef, b: NodeRef, va: &B, v
         return false;
     }
     va.size() >= vb.size()
+}
+
+/// Slots of a [`LeafCache`].
+const LEAF_SLOTS: usize = 64;
+
+/// The volumes of leaves met recently in one model, in a small direct-mapped table: a leaf stores
+/// no volume (it is computed from the triangle), and a search meets the same leaf against many
+/// nodes of the other model. Lives in the query (models stay immutable), on the stack.
+pub(crate) struct LeafCache<V> {
+    slots: [(NodeRef, Option<V>); LEAF_SLOTS],
+}
+
+impl<V: Copy> Default for LeafCache<V> {
+    fn default() -> Self {
+        LeafCache {
+            slots: [(0, None); LEAF_SLOTS],
+        }
+    }
+}
+
+impl<V: Copy> LeafCache<V> {
+    /// Node `r`'s volume, as `volume(r)` gives it; a leaf's from the table when it is there.
+    #[inline(always)]
+    pub fn get(&mut self, r: NodeRef, volume: impl Fn(NodeRef) -> V) -> V {
+        if r >= 0 {
+            return volume(r);
+        }
+        let slot = &mut self.slots[leaf_triangle(r) % LEAF_SLOTS];
+        match slot {
+            (k, Some(v)) if *k == r => *v,
+            _ => {
+                let v = volume(r);
+                *slot = (r, Some(v));
+                v
+            }
+        }
+    }
 }
