@@ -130,15 +130,9 @@ fn search<V: OverlapVolume>(
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
-        let (va, vb) = (
-            leaf1.get(p.a, |r| volume(b1, r)),
-            leaf2.get(p.b, |r| volume(b2, r)),
-        );
-        stats.bv_tests += 1;
-        if !V::overlap(&va, &vb, rel) {
-            continue;
-        }
         if p.a < 0 && p.b < 0 {
+            // Two triangles: test them at once (their volumes, computed from them, would cost
+            // about as much as the test).
             let (ta, tb) = (leaf_triangle(p.a), leaf_triangle(p.b));
             stats.tri_tests += 1;
             let t2 = b2.tri(tb);
@@ -152,6 +146,14 @@ fn search<V: OverlapVolume>(
                     break;
                 }
             }
+            continue;
+        }
+        let (va, vb) = (
+            leaf1.get(p.a, |r| volume(b1, r)),
+            leaf2.get(p.b, |r| volume(b2, r)),
+        );
+        stats.bv_tests += 1;
+        if !V::overlap(&va, &vb, rel) {
             continue;
         }
         if descend_first(p.a, p.b, &va, &vb) {
