@@ -3,6 +3,7 @@
 
 use crate::bounding_volume::BoundingVolume;
 use crate::bvh::{leaf_triangle, NodeRef, MAX_DEPTH};
+use std::mem::MaybeUninit;
 
 /// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.
 #[derive(Clone, Copy, Debug, Default)]
@@ -67,15 +68,19 @@ const LEAF_SLOTS: usize = 64;
 
 /// The volumes of leaves met recently in one model, in a small direct-mapped table: a leaf stores
 /// no volume (it is computed from the triangle), and a search meets the same leaf against many
-/// nodes of the other model. Lives in the query (models stay immutable), on the stack.
+/// nodes of the other model. Lives in the query (models stay immutable), on the stack; only its
+/// keys are initialised, so it costs next to nothing to set up.
 pub(crate) struct LeafCache<V> {
-    slots: [(NodeRef, Option<V>); LEAF_SLOTS],
+    /// The leaf whose volume each slot holds; 0 (an inner node, never looked up): none.
+    keys: [NodeRef; LEAF_SLOTS],
+    volumes: [MaybeUninit<V>; LEAF_SLOTS],
 }
 
 impl<V: Copy> Default for LeafCache<V> {
     fn default() -> Self {
         LeafCache {
-            slots: [(0, None); LEAF_SLOTS],
+            keys: [0; LEAF_SLOTS],
+            volumes: [const { MaybeUninit::uninit() }; LEAF_SLOTS],
         }
     }
 }
@@ -87,14 +92,15 @@ impl<V: Copy> LeafCache<V> {
         if r >= 0 {
             return volume(r);
         }
-        let slot = &mut self.slots[leaf_triangle(r) % LEAF_SLOTS];
-        match slot {
-            (k, Some(v)) if *k == r => *v,
-            _ => {
-                let v = volume(r);
-                *slot = (r, Some(v));
-                v
-            }
+        let i = leaf_triangle(r) % LEAF_SLOTS;
+        if self.keys[i] == r {
+            // SAFETY: a slot's key is set to a leaf (< 0) only together with its volume.
+            unsafe { self.volumes[i].assume_init() }
+        } else {
+            let v = volume(r);
+            self.volumes[i] = MaybeUninit::new(v);
+            self.keys[i] = r;
+            v
         }
     }
 }
