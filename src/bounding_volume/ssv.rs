@@ -249,18 +249,25 @@ impl Ssv {
         let len = n2[i].sqrt();
         let x = if len > 0.0 { e[i] / len } else { Vec3::x() };
         let w = r - p;
-        let n = x.cross(&w);
-        let nn = n.norm();
-        let z = if nn > 0.0 {
-            n / nn
+        // The second axis: the part of `w` across the edge, made orthogonal to `x` twice (once
+        // leaves a sliver's axis far from orthogonal, as the part is then mostly rounding), so
+        // that the frame is orthonormal to rounding whatever the triangle's shape: the distance
+        // and overlap tests rely on it.
+        let across = |v: Vec3| v - x * x.dot(&v);
+        let y0 = across(across(w));
+        let n0 = y0.norm();
+        let y = if n0 > 0.0 && n0.is_finite() {
+            let y1 = y0 / n0;
+            let y2 = across(y1);
+            y2 / y2.norm()
         } else {
-            // A segment or a point: any normal.
+            // A segment or a point: any axis across it.
             let k = x.iamin();
             let mut u = Vec3::zeros();
             u[k] = 1.0;
             x.cross(&u).normalize()
         };
-        let y = z.cross(&x);
+        let z = x.cross(&y);
         Ssv {
             axes: Mat3::from_columns(&[x, y, z]),
             origin: p,
