@@ -8,11 +8,11 @@
 //! might hide a closer pair) and could skip every other. Those nodes form the *minimal BVTT*; how far
 //! a real query's work exceeds it measures how well its search order and initial guess work.
 
-use crate::bounding_volume::{BoundingVolume, DistanceVolume};
-use crate::bvh::{Bvh, Node};
+use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
 use crate::model::Model;
+use crate::query::search::{expand, root_pair, LeafVolumes};
 
 /// Sizes of the minimal BVTT of a distance query (see the module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -56,49 +56,29 @@ pub fn minimal_bvtt_size(
     Ok(minimal_bvtt(m1, pose1, m2, pose2, distance)?.nodes_below)
 }
 
-/// The query's descent rule (`query::traversal::descend_first`, which is private to the query
-/// module): split model 1's node when model 2's is a leaf, model 2's when model 1's is, else the
-/// larger volume, model 1's on a tie. The tests below check that this walk reproduces the query's.
-fn split_first(a: &Node, b: &Node) -> bool {
-    if b.child < 0 {
-        return true;
-    }
-    if a.child < 0 {
-        return false;
-    }
-    a.ssv.size() >= b.ssv.size()
-}
-
+/// Walks the BVTT with the query's own expansion (`query::search::expand`: the same descent rule
+/// and the same bounds), descending a node only when its bound is below `d`.
 fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
-    let bound =
-        |a: usize, b: usize| DistanceVolume::distance(&b1.nodes[a].ssv, &b2.nodes[b].ssv, rel);
     let mut out = MinimalBvtt {
         bound_tests: 1,
         ..MinimalBvtt::default()
     };
-    let mut stack = vec![(0usize, 0usize, bound(0, 0))];
-    while let Some((a, b, lower)) = stack.pop() {
+    let root = root_pair(b1, b2, rel, f64::INFINITY);
+    let mut stack = vec![root];
+    let mut leaves = LeafVolumes::default();
+    while let Some(p) = stack.pop() {
         // Written so that a NaN bound is not descended.
-        let below = lower < d;
+        let below = p.bound < d;
         if !below {
             continue;
         }
         out.nodes_below += 1;
-        let (na, nb) = (&b1.nodes[a], &b2.nodes[b]);
-        if na.child < 0 && nb.child < 0 {
-            out.leaf_pairs_below += 1;
-            continue;
-        }
-        let children = if split_first(na, nb) {
-            let c = na.first_child();
-            [(c, b), (c + 1, b)]
-        } else {
-            let c = nb.first_child();
-            [(a, c), (a, c + 1)]
-        };
-        for (x, y) in children {
-            out.bound_tests += 1;
-            stack.push((x, y, bound(x, y)));
+        match expand(b1, b2, rel, p.a, p.b, f64::INFINITY, &mut leaves) {
+            None => out.leaf_pairs_below += 1,
+            Some(children) => {
+                out.bound_tests += 2;
+                stack.extend(children);
+            }
         }
     }
     out

@@ -243,7 +243,7 @@ impl Model {
     /// Number of triangles stored (added so far, or in the built model).
     pub fn num_triangles(&self) -> usize {
         match &self.bvh {
-            Some(b) => b.tris.len(),
+            Some(b) => b.num_tris(),
             None => self.pending.len(),
         }
     }

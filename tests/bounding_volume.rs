@@ -942,3 +942,33 @@ fn volumes_at_huge_coordinates_stay_finite_and_conservative() {
         assert!(Obb::overlap(&oa, &oa, &RelPose::identity()));
     }
 }
+
+/// A leaf's volume is its triangle's rectangle: it contains the triangle, and its frame is
+/// orthonormal to rounding even for slivers (the distance and overlap tests rely on it).
+#[test]
+fn triangle_rectangle_is_orthonormal_and_contains_slivers() {
+    let mut rng = Rng(5);
+    for k in 0..2000 {
+        let p = Vec3::new(rng.f(), rng.f(), rng.f()) * 10.0;
+        let d = Vec3::new(rng.f(), rng.f(), rng.f());
+        // The third vertex near the edge (or on it, or at an end): slivers of every thinness.
+        let thin = [0.0, 1e-15, 1e-12, 1e-8, 1e-3, 1.0][k % 6];
+        let r = p + d * rng.f().abs() + Vec3::new(rng.f(), rng.f(), rng.f()) * thin;
+        let t = [p, p + d, if k % 50 == 0 { p } else { r }];
+        let v = Ssv::triangle(&t);
+        let a = v.axes;
+        assert!(
+            (a.transpose() * a - Mat3::identity()).norm() < 1e-14,
+            "case {k}: {a}"
+        );
+        assert!((a.determinant() - 1.0).abs() < 1e-14, "case {k}");
+        for q in &t {
+            assert!(v.contains(q, 0.0), "case {k}");
+        }
+        assert!(
+            v.radius <= 1e-12 * (1.0 + p.norm()),
+            "case {k}: radius {}",
+            v.radius
+        );
+    }
+}

@@ -202,18 +202,79 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         let slack = Ssv::slack(a, b, rel);
+        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
+            Ssv::cores_distance(a, b, rel, 0.0, core_cutoff)
+        })
+    }
+}
+
+impl Ssv {
+    /// The bound from the core distance that `core(core_cutoff)` computes (exact below
+    /// `core_cutoff`, at least it otherwise), for volumes whose radii sum to `radii`.
+    #[inline(always)]
+    fn bound_from(radii: f64, slack: f64, cutoff: f64, core: impl FnOnce(f64) -> f64) -> f64 {
+        // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         // The core distance that makes the bound reach the cutoff, with a second slack so that a
         // core distance at or above it proves the bound's true value is at least the cutoff.
-        let core_cutoff = cutoff + a.radius + b.radius + 2.0 * slack;
-        let d = Ssv::cores_distance(a, b, rel, 0.0, core_cutoff);
-        let bound = (d - a.radius - b.radius - slack).max(0.0);
+        let core_cutoff = cutoff + radii + 2.0 * slack;
+        let d = core(core_cutoff);
+        let bound = (d - radii - slack).max(0.0);
         if d >= core_cutoff {
             bound.max(cutoff)
         } else {
             bound
         }
+    }
+
+    /// The rectangle swept sphere around one triangle, radius 0 up to rounding: the rectangle on its
+    /// longest edge whose other side reaches the opposite vertex (whose foot lies on that edge, as
+    /// it is the longest). A leaf's volume, computed on use rather than stored.
+    #[inline]
+    pub fn triangle(t: &[Vec3; 3]) -> Ssv {
+        let e = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+        let n2 = [
+            e[0].norm_squared(),
+            e[1].norm_squared(),
+            e[2].norm_squared(),
+        ];
+        let i = if n2[0] >= n2[1] && n2[0] >= n2[2] {
+            0
+        } else if n2[1] >= n2[2] {
+            1
+        } else {
+            2
+        };
+        let (p, q, r) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+        let len = n2[i].sqrt();
+        let x = if len > 0.0 { e[i] / len } else { Vec3::x() };
+        let w = r - p;
+        // The second axis: the part of `w` across the edge, made orthogonal to `x` twice (once
+        // leaves a sliver's axis far from orthogonal, as the part is then mostly rounding), so
+        // that the frame is orthonormal to rounding whatever the triangle's shape: the distance
+        // and overlap tests rely on it.
+        let across = |v: Vec3| v - x * x.dot(&v);
+        let y0 = across(across(w));
+        let n0 = y0.norm();
+        let y = if n0 > 0.0 && n0.is_finite() {
+            let y1 = y0 / n0;
+            let y2 = across(y1);
+            y2 / y2.norm()
+        } else {
+            // A segment or a point: any axis across it.
+            let k = x.iamin();
+            let mut u = Vec3::zeros();
+            u[k] = 1.0;
+            x.cross(&u).normalize()
+        };
+        let z = x.cross(&y);
+        Ssv {
+            axes: Mat3::from_columns(&[x, y, z]),
+            origin: p,
+            lengths: [len, y.dot(&w).max(0.0)],
+            radius: 0.0,
+        }
+        .cover(&[q, r])
     }
 }
 

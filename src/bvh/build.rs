@@ -1,7 +1,9 @@
 //! Top-down build, as the SSV paper describes it: principal axes from the covariance of the node's
 //! vertices, split across the axis of largest spread at the mean of the triangle centroids.
 
-use super::{Bvh, Node};
+#[cfg(test)]
+use super::NodeRef;
+use super::{frame_from, Bvh, Node};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
@@ -39,7 +41,7 @@ impl Bvh {
         centroids.extend(tris.iter().map(|(t, _)| (t[0] + t[1] + t[2]) / 3.0));
         let mut nodes: Vec<Node> = Vec::new();
         nodes
-            .try_reserve_exact(2 * n - 1)
+            .try_reserve_exact(n - 1)
             .map_err(|_| Error::ModelOutOfMemory)?;
         let mut points: Vec<Vec3> = Vec::new();
         points
@@ -47,24 +49,22 @@ impl Bvh {
             .map_err(|_| Error::ModelOutOfMemory)?;
         let mut keys: Vec<f64> = Vec::new();
 
-        // Work list of (node index, first, last exclusive, depth) over `order`.
-        let mut work = vec![(0usize, 0usize, n, 0usize)];
-        nodes.push(placeholder());
+        // Work list of (node index, first, last exclusive, depth) over `order`, for ranges of at
+        // least two triangles (a single triangle is a leaf and gets no node).
+        let mut work = Vec::new();
+        if n > 1 {
+            work.push((0usize, 0usize, n, 0usize));
+            nodes.push(placeholder());
+        }
         while let Some((ni, lo, hi, depth)) = work.pop() {
             let range = &mut order[lo..hi];
             points.clear();
             for &t in range.iter() {
                 points.extend_from_slice(&tris[t as usize].0);
             }
-            let axes = principal_axes(&points);
-            let node = &mut nodes[ni];
-            node.ssv = fit_ssv(volume, &axes, &points);
-            node.obb = Obb::fit(&axes, &points);
-            if hi - lo == 1 {
-                // Leaves point at the triangle's slot in leaf order, which is its place in `order`.
-                node.child = -(lo as i32) - 1;
-                continue;
-            }
+            let a = principal_axes(&points);
+            // The frame exactly as the node will give it back.
+            let axes = frame_from(&a.column(0).into(), &a.column(1).into());
             let axis: Vec3 = axes.column(0).into();
             let mid = split(
                 range,
@@ -73,49 +73,86 @@ impl Bvh {
                 depth >= MEAN_SPLIT_MAX_DEPTH,
                 &mut keys,
             );
-            let first = nodes.len();
-            nodes[ni].child = first as i32;
-            nodes.push(placeholder());
-            nodes.push(placeholder());
-            work.push((first + 1, lo + mid, hi, depth + 1));
-            work.push((first, lo, lo + mid, depth + 1));
+            let mut node = Node::new(&fit_ssv(volume, &axes, &points), &Obb::fit(&axes, &points));
+            for (k, (clo, chi)) in [(lo, lo + mid), (lo + mid, hi)].into_iter().enumerate() {
+                node.children[k] = if chi - clo == 1 {
+                    // Leaves point at the triangle's slot in leaf order, its place in `order`.
+                    -(clo as i32) - 1
+                } else {
+                    let c = nodes.len();
+                    nodes.push(placeholder());
+                    work.push((c, clo, chi, depth + 1));
+                    c as i32
+                };
+            }
+            nodes[ni] = node;
         }
 
-        let mut leaf_tris = Vec::new();
-        leaf_tris
-            .try_reserve_exact(n)
-            .map_err(|_| Error::ModelOutOfMemory)?;
         let mut ids = Vec::new();
         ids.try_reserve_exact(n)
             .map_err(|_| Error::ModelOutOfMemory)?;
-        for &t in &order {
-            leaf_tris.push(tris[t as usize].0);
-            ids.push(tris[t as usize].1);
-        }
+        ids.extend(order.iter().map(|&t| tris[t as usize].1));
+        let (verts, faces) = share_vertices(&tris, &order)?;
         Ok(Bvh {
             nodes,
-            tris: leaf_tris,
+            verts,
+            faces,
             ids,
             collision,
         })
     }
 }
 
+/// The distinct vertices of the triangles (equal coordinates, bit for bit, stored once) and each
+/// triangle's vertex indices, in the order `order`. Sorts the vertices' bit patterns: O(n log n).
+fn share_vertices(tris: &[(Tri, i32)], order: &[u32]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
+    let oom = |_| Error::ModelOutOfMemory;
+    let mut keyed: Vec<([u64; 3], u32)> = Vec::new();
+    keyed.try_reserve_exact(3 * order.len()).map_err(oom)?;
+    for (slot, &t) in order.iter().enumerate() {
+        for (k, v) in tris[t as usize].0.iter().enumerate() {
+            keyed.push((
+                [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()],
+                (3 * slot + k) as u32,
+            ));
+        }
+    }
+    keyed.sort_unstable();
+    let distinct = 1 + keyed.windows(2).filter(|w| w[0].0 != w[1].0).count();
+    let mut verts: Vec<Vec3> = Vec::new();
+    verts.try_reserve_exact(distinct).map_err(oom)?;
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    faces.try_reserve_exact(order.len()).map_err(oom)?;
+    faces.resize(order.len(), [0; 3]);
+    for (i, (bits, corner)) in keyed.iter().enumerate() {
+        if i == 0 || keyed[i - 1].0 != *bits {
+            verts.push(Vec3::new(
+                f64::from_bits(bits[0]),
+                f64::from_bits(bits[1]),
+                f64::from_bits(bits[2]),
+            ));
+        }
+        let c = *corner as usize;
+        faces[c / 3][c % 3] = (verts.len() - 1) as u32;
+    }
+    Ok((verts, faces))
+}
+
 fn placeholder() -> Node {
-    Node {
-        ssv: Ssv {
-            axes: Mat3::identity(),
+    let axes = Mat3::identity();
+    Node::new(
+        &Ssv {
+            axes,
             origin: Vec3::zeros(),
             lengths: [0.0; 2],
             radius: 0.0,
         },
-        obb: Obb {
-            axes: Mat3::identity(),
+        &Obb {
+            axes,
             center: Vec3::zeros(),
             half: Vec3::zeros(),
         },
-        child: 0,
-    }
+    )
 }
 
 /// Partitions `range` (at least two triangles) and returns how many go to the first child (never 0
@@ -226,25 +263,26 @@ mod tests {
 
     fn check_containment(bvh: &Bvh) {
         // Every node's volumes contain every vertex of every triangle below it.
-        fn rec(b: &Bvh, i: usize, out: &mut Vec<usize>) {
-            match b.nodes[i].leaf_triangle() {
-                Some(t) => out.push(t),
-                None => {
-                    let c = b.nodes[i].first_child();
-                    rec(b, c, out);
-                    rec(b, c + 1, out);
-                }
+        fn rec(b: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
+            if r < 0 {
+                out.push(super::super::leaf_triangle(r));
+            } else {
+                let [c0, c1] = b.nodes[r as usize].children;
+                rec(b, c0, out);
+                rec(b, c1, out);
             }
         }
-        for i in 0..bvh.nodes.len() {
+        let refs = (0..bvh.nodes.len() as i32).chain((0..bvh.num_tris() as i32).map(|t| -t - 1));
+        for r in refs {
             let mut tris = Vec::new();
-            rec(bvh, i, &mut tris);
-            let node = &bvh.nodes[i];
+            rec(bvh, r, &mut tris);
+            let (ssv, obb) = (bvh.ssv(r), bvh.obb(r));
             for t in tris {
-                for v in &bvh.tris[t] {
+                for v in &bvh.tri(t) {
                     let eps = 1e-9 * (1.0 + v.norm());
-                    assert!(node.ssv.contains(v, eps), "ssv of node {i} misses {v:?}");
-                    assert!(node.obb.contains(v, eps), "obb of node {i} misses {v:?}");
+                    assert!(ssv.contains(v, eps), "ssv of node {r} misses {v:?}");
+                    assert!(obb.contains(v, eps), "obb of node {r} misses {v:?}");
+                    assert!(ssv.contains(v, 0.0) && obb.contains(v, 0.0), "node {r}");
                 }
             }
         }
@@ -294,7 +332,7 @@ mod tests {
                 })
                 .collect();
             let bvh = build_checked(tris);
-            assert_eq!(bvh.nodes.len(), 2 * n as usize - 1);
+            assert_eq!(bvh.nodes.len(), n as usize - 1);
             let mut ids = bvh.ids.clone();
             ids.sort();
             assert_eq!(ids, (0..n).collect::<Vec<_>>());

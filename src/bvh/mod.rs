@@ -1,11 +1,17 @@
 //! The bounding-volume hierarchy of a model: layout (this file) and top-down build (`build.rs`).
 //!
-//! Nodes live in one array, the root first; the two children of a node are adjacent. Each node
-//! carries a swept sphere volume (a PSS, LSS or RSS, as the model's [`VolumeKind`] chooses) for the
-//! distance and tolerance queries, and for collision when the model asks for it, and an overlap
-//! volume (OBB) for collision, both fitted on the same principal axes and stored in model coordinates (a test
-//! composes the relative pose with the volumes' axes, so no per-node frame chain is needed). Leaves
-//! hold one triangle. Triangles are stored in leaf order so that a subtree's triangles are contiguous.
+//! Only inner nodes are stored, in one array, the root first. Each carries one frame (the principal
+//! axes both its volumes were fitted on; the third axis is stored as the cross product of the first
+//! two, recomputed on use exactly as the build computed it), a swept sphere volume (a PSS, LSS or
+//! RSS, as the model's [`VolumeKind`](crate::model::VolumeKind) chooses) for the distance and
+//! tolerance queries, and for collision when the model asks for it, and an overlap volume (OBB) for
+//! collision, both in model coordinates (a test composes the relative pose with the axes, so no
+//! per-node frame chain is needed).
+//!
+//! A leaf is one triangle and stores no volume: its volumes are computed on use from the triangle
+//! (the exact rectangle around it, see [`Ssv::triangle`]). Triangles are three indices into a vertex
+//! array in which equal vertices are stored once, in leaf order so that a subtree's triangles are
+//! contiguous.
 
 mod build;
 
@@ -13,43 +19,95 @@ pub(crate) use build::MAX_DEPTH;
 
 use crate::bounding_volume::{Obb, Ssv};
 use crate::geometry::Tri;
+use crate::math::{Mat3, Vec3};
 use crate::model::CollisionVolume;
 
-/// One node of the hierarchy.
+/// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
+/// a leaf, holding triangle `-r - 1`.
+pub(crate) type NodeRef = i32;
+
+/// One inner node of the hierarchy.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Node {
-    /// Distance volume (and overlap volume when the model collides on swept spheres).
-    pub ssv: Ssv,
-    /// Overlap volume.
-    pub obb: Obb,
-    /// `>= 0`: index of the first child (the second is `child + 1`). `< 0`: a leaf holding
-    /// triangle `-child - 1`.
-    pub child: i32,
+    /// The first two axes of the node's frame (orthonormal); the third is their cross product.
+    axes: [Vec3; 2],
+    /// The swept sphere volume's corner, side lengths and radius (see [`Ssv`]).
+    ssv_origin: Vec3,
+    ssv_lengths: [f64; 2],
+    ssv_radius: f64,
+    /// The box's centre and half extents (see [`Obb`]).
+    obb_center: Vec3,
+    obb_half: Vec3,
+    /// The two children.
+    pub children: [NodeRef; 2],
 }
 
 impl Node {
-    /// The triangle index of a leaf, `None` for an inner node.
-    #[inline]
-    pub fn leaf_triangle(&self) -> Option<usize> {
-        if self.child < 0 {
-            Some((-(self.child as i64) - 1) as usize)
-        } else {
-            None
+    /// Stores a node fitted on `axes` (whose third column must be the cross product of the first
+    /// two, as [`Node::frame`] recomputes it).
+    pub fn new(ssv: &Ssv, obb: &Obb) -> Node {
+        debug_assert_eq!(ssv.axes, obb.axes);
+        Node {
+            axes: [ssv.axes.column(0).into(), ssv.axes.column(1).into()],
+            ssv_origin: ssv.origin,
+            ssv_lengths: ssv.lengths,
+            ssv_radius: ssv.radius,
+            obb_center: obb.center,
+            obb_half: obb.half,
+            children: [0, 0],
         }
     }
 
-    /// The first child of an inner node (the second is `first + 1`).
-    #[inline]
-    pub fn first_child(&self) -> usize {
-        self.child as usize
+    /// The node's frame, from the two stored axes.
+    #[inline(always)]
+    pub fn frame(&self) -> Mat3 {
+        frame_from(&self.axes[0], &self.axes[1])
+    }
+
+    /// The swept sphere volume.
+    #[inline(always)]
+    pub fn ssv(&self) -> Ssv {
+        Ssv {
+            axes: self.frame(),
+            origin: self.ssv_origin,
+            lengths: self.ssv_lengths,
+            radius: self.ssv_radius,
+        }
+    }
+
+    /// The size of the swept sphere volume (as [`BoundingVolume::size`] measures it).
+    #[inline(always)]
+    pub fn ssv_size(&self) -> f64 {
+        let l = self.ssv_lengths;
+        (l[0] * l[0] + l[1] * l[1]).sqrt() + 2.0 * self.ssv_radius
+    }
+
+    /// The box.
+    #[inline(always)]
+    pub fn obb(&self) -> Obb {
+        Obb {
+            axes: self.frame(),
+            center: self.obb_center,
+            half: self.obb_half,
+        }
     }
 }
 
-/// A built hierarchy: nodes, and the triangles with their caller ids in leaf order.
+/// The frame with first axes `a0`, `a1` and third `a0 x a1`. The build stores its axes through this
+/// function, so the frame a volume was fitted on is recovered bit for bit.
+#[inline(always)]
+pub(crate) fn frame_from(a0: &Vec3, a1: &Vec3) -> Mat3 {
+    Mat3::from_columns(&[*a0, *a1, a0.cross(a1)])
+}
+
+/// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
 #[derive(Debug)]
 pub(crate) struct Bvh {
     pub nodes: Vec<Node>,
-    pub tris: Vec<Tri>,
+    /// The distinct vertices.
+    pub verts: Vec<Vec3>,
+    /// Each triangle's vertices, by index into `verts`, in leaf order.
+    pub faces: Vec<[u32; 3]>,
     pub ids: Vec<i32>,
     /// Which volume this model offers the collision query.
     pub collision: CollisionVolume,
@@ -59,23 +117,77 @@ impl Bvh {
     /// Bytes held by the hierarchy.
     pub fn memory_usage(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
-            + self.tris.capacity() * std::mem::size_of::<Tri>()
+            + self.verts.capacity() * std::mem::size_of::<Vec3>()
+            + self.faces.capacity() * std::mem::size_of::<[u32; 3]>()
             + self.ids.capacity() * std::mem::size_of::<i32>()
             + std::mem::size_of::<Bvh>()
+    }
+
+    /// Number of triangles.
+    #[inline]
+    pub fn num_tris(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Triangle `t` (in leaf order).
+    #[inline(always)]
+    pub fn tri(&self, t: usize) -> Tri {
+        let f = &self.faces[t];
+        [
+            self.verts[f[0] as usize],
+            self.verts[f[1] as usize],
+            self.verts[f[2] as usize],
+        ]
+    }
+
+    /// The root: the first inner node, or the only triangle's leaf.
+    #[inline]
+    pub fn root(&self) -> NodeRef {
+        if self.nodes.is_empty() {
+            -1
+        } else {
+            0
+        }
+    }
+
+    /// The swept sphere volume of node `r`.
+    #[inline(always)]
+    pub fn ssv(&self, r: NodeRef) -> Ssv {
+        if r >= 0 {
+            self.nodes[r as usize].ssv()
+        } else {
+            Ssv::triangle(&self.tri(leaf_triangle(r)))
+        }
+    }
+
+    /// The box of node `r`.
+    #[inline(always)]
+    pub fn obb(&self, r: NodeRef) -> Obb {
+        if r >= 0 {
+            self.nodes[r as usize].obb()
+        } else {
+            let t = self.tri(leaf_triangle(r));
+            Obb::fit(&Ssv::triangle(&t).axes, &t)
+        }
     }
 
     /// Depth of the tree (a single leaf has depth 1).
     #[cfg(test)]
     pub fn depth(&self) -> usize {
-        fn rec(b: &Bvh, i: usize) -> usize {
-            match b.nodes[i].leaf_triangle() {
-                Some(_) => 1,
-                None => {
-                    let c = b.nodes[i].first_child();
-                    1 + rec(b, c).max(rec(b, c + 1))
-                }
+        fn rec(b: &Bvh, r: NodeRef) -> usize {
+            if r < 0 {
+                1
+            } else {
+                let [c0, c1] = b.nodes[r as usize].children;
+                1 + rec(b, c0).max(rec(b, c1))
             }
         }
-        rec(self, 0)
+        rec(self, self.root())
     }
+}
+
+/// The triangle of a leaf reference.
+#[inline(always)]
+pub(crate) fn leaf_triangle(r: NodeRef) -> usize {
+    (-(r as i64) - 1) as usize
 }

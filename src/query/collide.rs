@@ -1,9 +1,9 @@
 //! Collision: which triangle pairs of two posed models overlap.
 
-use super::traversal::{descend_first, NodePair, PairStack};
+use super::traversal::{descend_first, LeafCache, NodePair, PairStack};
 use super::{prepare, Stats};
 use crate::bounding_volume::OverlapVolume;
-use crate::bvh::{Bvh, Node};
+use crate::bvh::{leaf_triangle, Bvh, NodeRef};
 use crate::error::Error;
 use crate::geometry::{tri_overlap, Tri};
 use crate::math::{Pose, RelPose};
@@ -102,9 +102,9 @@ pub fn collide_into(
     result.pairs.clear();
     let mut stats = if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv
     {
-        search(result, b1, b2, &rel, mode, |n| &n.ssv)
+        search(result, b1, b2, &rel, mode, |b, r| b.ssv(r))
     } else {
-        search(result, b1, b2, &rel, mode, |n| &n.obb)
+        search(result, b1, b2, &rel, mode, |b, r| b.obb(r))
     };
     stats.query_time_secs = start.elapsed().as_secs_f64();
     result.stats = stats;
@@ -119,28 +119,25 @@ fn search<V: OverlapVolume>(
     b2: &Bvh,
     rel: &RelPose,
     mode: ContactMode,
-    volume: impl Fn(&Node) -> &V,
+    volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
+    let (mut leaf1, mut leaf2) = (LeafCache::default(), LeafCache::default());
     stack.push(NodePair {
-        a: 0,
-        b: 0,
+        a: b1.root(),
+        b: b2.root(),
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
-        let na = &b1.nodes[p.a as usize];
-        let nb = &b2.nodes[p.b as usize];
-        let (va, vb) = (volume(na), volume(nb));
-        stats.bv_tests += 1;
-        if !V::overlap(va, vb, rel) {
-            continue;
-        }
-        if let (Some(ta), Some(tb)) = (na.leaf_triangle(), nb.leaf_triangle()) {
+        if p.a < 0 && p.b < 0 {
+            // Two triangles: test them at once (their volumes, computed from them, would cost
+            // about as much as the test).
+            let (ta, tb) = (leaf_triangle(p.a), leaf_triangle(p.b));
             stats.tri_tests += 1;
-            let t2 = &b2.tris[tb];
+            let t2 = b2.tri(tb);
             let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
-            if tri_overlap(&b1.tris[ta], &moved) {
+            if tri_overlap(&b1.tri(ta), &moved) {
                 result.pairs.push(ContactPair {
                     id1: b1.ids[ta],
                     id2: b2.ids[tb],
@@ -151,14 +148,22 @@ fn search<V: OverlapVolume>(
             }
             continue;
         }
-        if descend_first(na, nb, va, vb) {
-            let c = na.first_child() as u32;
-            stack.push(NodePair { a: c + 1, ..p });
-            stack.push(NodePair { a: c, ..p });
+        let (va, vb) = (
+            leaf1.get(p.a, |r| volume(b1, r)),
+            leaf2.get(p.b, |r| volume(b2, r)),
+        );
+        stats.bv_tests += 1;
+        if !V::overlap(&va, &vb, rel) {
+            continue;
+        }
+        if descend_first(p.a, p.b, &va, &vb) {
+            let [c0, c1] = b1.nodes[p.a as usize].children;
+            stack.push(NodePair { a: c1, ..p });
+            stack.push(NodePair { a: c0, ..p });
         } else {
-            let c = nb.first_child() as u32;
-            stack.push(NodePair { b: c + 1, ..p });
-            stack.push(NodePair { b: c, ..p });
+            let [c0, c1] = b2.nodes[p.b as usize].children;
+            stack.push(NodePair { b: c1, ..p });
+            stack.push(NodePair { b: c0, ..p });
         }
     }
     stats

@@ -8,7 +8,7 @@
 
 mod collide;
 mod distance;
-mod search;
+pub(crate) mod search;
 mod tolerance;
 mod traversal;
 

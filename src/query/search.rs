@@ -7,10 +7,10 @@
 //! nodes in increasing order of bound, so it expands no node whose bound is above the final distance:
 //! it does the least work any search with these volumes can do (the minimal BVTT).
 
-use super::traversal::{descend_first, NodePair, PairStack};
+use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
-use crate::bounding_volume::DistanceVolume;
-use crate::bvh::Bvh;
+use crate::bounding_volume::{DistanceVolume, Ssv};
+use crate::bvh::{leaf_triangle, Bvh, NodeRef};
 use crate::error::Error;
 use crate::geometry::{tri_distance, Tri};
 use crate::math::{RelPose, Vec3};
@@ -107,6 +107,14 @@ pub(crate) struct ClosestSearch<'a> {
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
     pub pruned_min: f64,
+    leaves: LeafVolumes,
+}
+
+/// Recently met leaves' volumes of each model (see [`LeafCache`]).
+#[derive(Default)]
+pub(crate) struct LeafVolumes {
+    first: LeafCache<Ssv>,
+    second: LeafCache<Ssv>,
 }
 
 impl<'a> ClosestSearch<'a> {
@@ -126,8 +134,9 @@ impl<'a> ClosestSearch<'a> {
             },
             stats: Stats::default(),
             pruned_min: f64::INFINITY,
+            leaves: LeafVolumes::default(),
         };
-        if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.tris.len() && b < b2.tris.len()) {
+        if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.num_tris() && b < b2.num_tris()) {
             s.test_triangles(ta, tb);
         }
         s
@@ -135,13 +144,13 @@ impl<'a> ClosestSearch<'a> {
 
     fn test_triangles(&mut self, ta: usize, tb: usize) {
         self.stats.tri_tests += 1;
-        let t2 = &self.b2.tris[tb];
+        let t2 = self.b2.tri(tb);
         let moved: Tri = [
             self.rel.apply(&t2[0]),
             self.rel.apply(&t2[1]),
             self.rel.apply(&t2[2]),
         ];
-        let c = tri_distance(&self.b1.tris[ta], &moved);
+        let c = tri_distance(&self.b1.tri(ta), &moved);
         if c.distance < self.best.d {
             self.best = Best {
                 d: c.distance,
@@ -153,55 +162,27 @@ impl<'a> ClosestSearch<'a> {
         }
     }
 
-    /// The lower bound of a BVTT node: exact below `cutoff`, at least `cutoff` otherwise.
-    fn bound(&mut self, a: u32, b: u32, cutoff: f64) -> f64 {
-        self.stats.bv_tests += 1;
-        DistanceVolume::distance_below(
-            &self.b1.nodes[a as usize].ssv,
-            &self.b2.nodes[b as usize].ssv,
-            &self.rel,
-            cutoff,
-        )
-    }
-
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
     /// their bounds (exact below `cutoff`), nearer first.
     #[inline]
     fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
-        let na = &self.b1.nodes[p.a as usize];
-        let nb = &self.b2.nodes[p.b as usize];
-        let (c1, c2) = if descend_first(na, nb, &na.ssv, &nb.ssv) {
-            let Some(ta) = na.leaf_triangle() else {
-                let c = na.first_child() as u32;
-                return Some(self.bounded_pair((c, p.b), (c + 1, p.b), cutoff));
-            };
-            // Both are leaves (a leaf is descended only when the other is one too).
-            let tb = nb.leaf_triangle().unwrap_or_default();
-            self.test_triangles(ta, tb);
-            return None;
-        } else {
-            let c = nb.first_child() as u32;
-            ((p.a, c), (p.a, c + 1))
-        };
-        Some(self.bounded_pair(c1, c2, cutoff))
-    }
-
-    #[inline]
-    fn bounded_pair(&mut self, c1: (u32, u32), c2: (u32, u32), cutoff: f64) -> [NodePair; 2] {
-        let x = NodePair {
-            a: c1.0,
-            b: c1.1,
-            bound: self.bound(c1.0, c1.1, cutoff),
-        };
-        let y = NodePair {
-            a: c2.0,
-            b: c2.1,
-            bound: self.bound(c2.0, c2.1, cutoff),
-        };
-        if y.bound < x.bound {
-            [y, x]
-        } else {
-            [x, y]
+        match expand(
+            self.b1,
+            self.b2,
+            &self.rel,
+            p.a,
+            p.b,
+            cutoff,
+            &mut self.leaves,
+        ) {
+            Some([x, y]) => {
+                self.stats.bv_tests += 2;
+                Some(if y.bound < x.bound { [y, x] } else { [x, y] })
+            }
+            None => {
+                self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+                None
+            }
         }
     }
 
@@ -219,11 +200,8 @@ impl<'a> ClosestSearch<'a> {
         if stop(self.best.d) {
             return;
         }
-        let root = NodePair {
-            a: 0,
-            b: 0,
-            bound: self.bound(0, 0, cutoff(self.best.d)),
-        };
+        self.stats.bv_tests += 1;
+        let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
         let strategy = match search.strategy {
             Strategy::Auto => auto,
             s => s,
@@ -360,6 +338,58 @@ impl<'a> ClosestSearch<'a> {
             q.replace(heap);
         });
     }
+}
+
+/// The root of the BVTT with its bound (exact below `cutoff`, at least `cutoff` otherwise).
+pub(crate) fn root_pair(b1: &Bvh, b2: &Bvh, rel: &RelPose, cutoff: f64) -> NodePair {
+    let (a, b) = (b1.root(), b2.root());
+    NodePair {
+        a,
+        b,
+        bound: DistanceVolume::distance_below(&b1.ssv(a), &b2.ssv(b), rel, cutoff),
+    }
+}
+
+/// The two children of the BVTT node `(a, b)` with their bounds (exact below `cutoff`, at least
+/// `cutoff` otherwise), or `None` for a pair of leaves. The descent rule: split model 1's node when
+/// model 2's is a leaf, model 2's when model 1's is, else the one with the larger volume (model 1's
+/// on a tie). Leaves' volumes (computed from their triangles) go through `leaves`.
+#[inline]
+pub(crate) fn expand(
+    b1: &Bvh,
+    b2: &Bvh,
+    rel: &RelPose,
+    a: NodeRef,
+    b: NodeRef,
+    cutoff: f64,
+    leaves: &mut LeafVolumes,
+) -> Option<[NodePair; 2]> {
+    let split_first = if b < 0 {
+        if a < 0 {
+            return None;
+        }
+        true
+    } else if a < 0 {
+        false
+    } else {
+        b1.nodes[a as usize].ssv_size() >= b2.nodes[b as usize].ssv_size()
+    };
+    let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
+    Some(if split_first {
+        let fixed = leaves.second.get(b, ssv2);
+        b1.nodes[a as usize].children.map(|c| NodePair {
+            a: c,
+            b,
+            bound: DistanceVolume::distance_below(&leaves.first.get(c, ssv1), &fixed, rel, cutoff),
+        })
+    } else {
+        let fixed = leaves.first.get(a, ssv1);
+        b2.nodes[b as usize].children.map(|c| NodePair {
+            a,
+            b: c,
+            bound: DistanceVolume::distance_below(&fixed, &leaves.second.get(c, ssv2), rel, cutoff),
+        })
+    })
 }
 
 /// Orders BVTT nodes so that `BinaryHeap` pops the smallest bound first.
