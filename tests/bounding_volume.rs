@@ -972,3 +972,65 @@ fn triangle_rectangle_is_orthonormal_and_contains_slivers() {
         );
     }
 }
+
+/// Whether the segment `p0 p1` meets the triangle `t` (an interior crossing of its plane inside it).
+fn segment_meets_triangle(p0: &Vec3, p1: &Vec3, t: &[Vec3; 3]) -> bool {
+    let n = (t[1] - t[0]).cross(&(t[2] - t[0]));
+    let (s0, s1) = (n.dot(&(p0 - t[0])), n.dot(&(p1 - t[0])));
+    if s0 * s1 > 0.0 || s0 == s1 {
+        return false;
+    }
+    let x = p0 + (p1 - p0) * (s0 / (s0 - s1));
+    (0..3).all(|k| n.dot(&(t[(k + 1) % 3] - t[k]).cross(&(x - t[k]))) >= 0.0)
+}
+
+/// Box-triangle intersection by brute force: they meet iff an edge of the triangle meets the box
+/// or an edge of the box meets the triangle (the box grown by `grow` on every side).
+fn brute_box_meets_triangle(b: &Obb, t: &[Vec3; 3], grow: f64) -> bool {
+    let h = b.half.add_scalar(grow);
+    if (0..3).any(|k| segment_meets_box(&t[k], &t[(k + 1) % 3], &b.center, &b.axes, &h, 0.0)) {
+        return true;
+    }
+    let corner = |i: usize| {
+        let s = |bit: usize, k: usize| if i >> bit & 1 == 1 { h[k] } else { -h[k] };
+        b.center + b.axes * Vec3::new(s(0, 0), s(1, 1), s(2, 2))
+    };
+    (0..8).any(|i| {
+        (0..3).any(|bit| {
+            let j = i | (1 << bit);
+            j != i && segment_meets_triangle(&corner(i), &corner(j), t)
+        })
+    })
+}
+
+#[test]
+fn obb_triangle_overlap_agrees_with_brute_force() {
+    let mut rng = Rng(23);
+    let (mut met, mut apart) = (0, 0);
+    for i in 0..4000 {
+        let b = random_box(
+            &mut rng,
+            1.0,
+            if i % 3 == 0 { 1e3 } else { 0.0 },
+            i % 5 == 0,
+        );
+        let size = rng.log_uniform(1e-3, 1.0) * (b.half.max() + 1e-3);
+        let at = Vec3::new(
+            rng.range(-1.5, 1.5),
+            rng.range(-1.5, 1.5),
+            rng.range(-1.5, 1.5),
+        );
+        let c = b.center + b.axes * at.component_mul(&b.half.add_scalar(size));
+        let t = [c + rng.cube(size), c + rng.cube(size), c + rng.cube(size)];
+        let got = Obb::overlap_triangle(&b, &t).expect("boxes have a direct test");
+        let margin = 1e-9 * (1.0 + b.center.abs().max());
+        if brute_box_meets_triangle(&b, &t, -margin) {
+            assert!(got, "meets but apart: {b:?} {t:?}");
+            met += 1;
+        } else if !brute_box_meets_triangle(&b, &t, margin) {
+            assert!(!got, "apart but said to meet: {b:?} {t:?}");
+            apart += 1;
+        }
+    }
+    assert!(met > 500 && apart > 500, "{met} {apart}");
+}

@@ -16,6 +16,7 @@ mod ssv;
 pub use obb::Obb;
 pub use ssv::{Ssv, SsvKind};
 
+use crate::geometry::Tri;
 use crate::math::{RelPose, Vec3};
 
 /// What every bounding volume offers the hierarchy builder.
@@ -47,4 +48,12 @@ pub trait OverlapVolume: BoundingVolume {
     /// Whether `a` and `b` (with `b` posed by `rel` in `a`'s frame) may share a point. Never false
     /// when they do.
     fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool;
+
+    /// Whether `a` may share a point with the triangle `t` (given in `a`'s model frame), for
+    /// volumes with a direct test; `None` makes the caller test against the triangle's own volume.
+    /// Never `Some(false)` when they share a point.
+    fn overlap_triangle(a: &Self, t: &Tri) -> Option<bool> {
+        let _ = (a, t);
+        None
+    }
 }

@@ -1,4 +1,5 @@
 use super::{BoundingVolume, OverlapVolume};
+use crate::geometry::Tri;
 use crate::math::{Mat3, RelPose, Vec3};
 
 /// Oriented bounding box.
@@ -122,5 +123,48 @@ impl OverlapVolume for Obb {
             }
         }
         true
+    }
+
+    /// Separating axis test of a box and a triangle on the 13 candidate axes: the box's 3 face
+    /// normals, the triangle's normal, and the 9 cross products of a box axis and a triangle edge.
+    /// Each test allows a rounding slack in proportion to the axis, so touching counts as overlap.
+    #[inline]
+    fn overlap_triangle(a: &Self, t: &Tri) -> Option<bool> {
+        let h = &a.half;
+        let v = [a.local(&t[0]), a.local(&t[1]), a.local(&t[2])];
+        let scale =
+            a.center.abs().sum() + t[0].abs().sum() + t[1].abs().sum() + t[2].abs().sum() + h.sum();
+        let slack = OVERLAP_SLACK * scale;
+        // Whether the triangle's projection on `axis` (box coordinates) misses the box's.
+        let apart = |axis: &Vec3| {
+            let (p0, p1, p2) = (axis.dot(&v[0]), axis.dot(&v[1]), axis.dot(&v[2]));
+            let lo = p0.min(p1).min(p2);
+            let hi = p0.max(p1).max(p2);
+            let r = h.dot(&axis.abs());
+            lo > r + slack * axis.abs().sum() || hi < -r - slack * axis.abs().sum()
+        };
+        for i in 0..3 {
+            let lo = v[0][i].min(v[1][i]).min(v[2][i]);
+            let hi = v[0][i].max(v[1][i]).max(v[2][i]);
+            if lo > h[i] + slack || hi < -h[i] - slack {
+                return Some(false);
+            }
+        }
+        let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
+        if apart(&e[0].cross(&e[1])) {
+            return Some(false);
+        }
+        for edge in &e {
+            // e_i x edge for the box axes e_i, written out.
+            let axes = [
+                Vec3::new(0.0, -edge.z, edge.y),
+                Vec3::new(edge.z, 0.0, -edge.x),
+                Vec3::new(-edge.y, edge.x, 0.0),
+            ];
+            if axes.iter().any(apart) {
+                return Some(false);
+            }
+        }
+        Some(true)
     }
 }

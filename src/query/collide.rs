@@ -148,6 +148,38 @@ fn search<V: OverlapVolume>(
             }
             continue;
         }
+        // A node against a triangle: volumes with a direct test skip the triangle's own volume.
+        if p.a < 0 || p.b < 0 {
+            let direct = if p.b < 0 {
+                let t = b2.tri(leaf_triangle(p.b));
+                let moved: Tri = [rel.apply(&t[0]), rel.apply(&t[1]), rel.apply(&t[2])];
+                V::overlap_triangle(&volume(b1, p.a), &moved)
+            } else {
+                let t = b1.tri(leaf_triangle(p.a));
+                let moved: Tri = [
+                    rel.apply_inverse(&t[0]),
+                    rel.apply_inverse(&t[1]),
+                    rel.apply_inverse(&t[2]),
+                ];
+                V::overlap_triangle(&volume(b2, p.b), &moved)
+            };
+            if let Some(hit) = direct {
+                stats.bv_tests += 1;
+                if hit {
+                    // Descend the node; the triangle stays.
+                    if p.b < 0 {
+                        let [c0, c1] = b1.nodes[p.a as usize].children;
+                        stack.push(NodePair { a: c1, ..p });
+                        stack.push(NodePair { a: c0, ..p });
+                    } else {
+                        let [c0, c1] = b2.nodes[p.b as usize].children;
+                        stack.push(NodePair { b: c1, ..p });
+                        stack.push(NodePair { b: c0, ..p });
+                    }
+                }
+                continue;
+            }
+        }
         let (va, vb) = (
             leaf1.get(p.a, |r| volume(b1, r)),
             leaf2.get(p.b, |r| volume(b2, r)),
