@@ -968,7 +968,7 @@ void run_strategies(Case& c, const std::string& workload, int reps) {
     };
     const size_t bfs_poses = std::min<size_t>(c.size(), 3);
     const Variant variants[] = {
-        {"auto (default: priority, unbounded queue)", PQP_SEARCH_AUTO, 0},
+        {"auto (default: priority, queue of 1024)", PQP_SEARCH_AUTO, 1024},
         {"priority, unbounded queue", PQP_SEARCH_PRIORITY, 0},
         {"priority, queue of 32 (PQP's qsize 32)", PQP_SEARCH_PRIORITY, 32},
         {"depth-first (PQP's default, qsize 2)", PQP_SEARCH_DEPTH_FIRST, 0},

@@ -350,7 +350,7 @@ static void search_strategies(void)
     CHECK(box != NULL && r != NULL && t != NULL);
     if (!box || !r || !t) return;
     CHECK_EQ(o.strategy, PQP_SEARCH_AUTO);
-    CHECK_EQ(o.qsize, 0);
+    CHECK_EQ(o.qsize, 1024);
     CHECK_EQ(o.triangle_cache, 1);
     for (s = 0; s < 4; s++)
         for (cache = 0; cache < 2; cache++)

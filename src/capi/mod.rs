@@ -254,15 +254,15 @@ pub(crate) unsafe fn read_pose(r: *const f64, t: *const f64) -> Result<Pose, Err
 /// What pqp_search_options_default gives.
 pub(crate) const DEFAULT_SEARCH_OPTIONS: pqp_search_options = pqp_search_options {
     strategy: PQP_SEARCH_AUTO,
-    qsize: 0,
+    qsize: Search::DEFAULT_QSIZE as c_int,
     triangle_cache: 1,
 };
 
 /// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
 pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
 
-/// The search of pqp_distance and pqp_tolerance, given PQP's queue size (at least 1). The default
-/// search keeps an unbounded queue, so it honours any queue size; the size is only checked.
+/// The search of pqp_distance and pqp_tolerance, given PQP's queue size (at least 1): the default
+/// search; the size is only checked.
 pub(crate) fn default_search(qsize: c_int) -> Result<Search, Error> {
     if qsize >= 1 {
         Ok(Search::default())
