@@ -259,9 +259,9 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
 
 /// Creates a convex model from a closed convex polyhedral mesh (polygon faces), verified exactly.
 ///
-/// Face f has counts[f] vertices, listed counter-clockwise seen from outside; the faces' index
-/// lists are concatenated in indices. Each face must be exactly planar and strictly convex; the
-/// rest is as for pqp_convex_model_from_triangles.
+/// Each face has as many vertices as its entry in counts, listed counter-clockwise seen from
+/// outside; the faces' index lists are concatenated in indices. Each face must be exactly planar
+/// and strictly convex; the rest is as for pqp_convex_model_from_triangles.
 ///
 /// @param out           receives the new model, or NULL on any error.
 /// @param xyz           the vertices, 3 doubles each, num_vertices * 3 doubles in all.
