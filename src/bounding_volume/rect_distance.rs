@@ -34,7 +34,7 @@ use crate::math::{Mat3, Vec3};
 /// - `enough`: the search may stop at the first candidate pair at most `enough` apart and return
 ///   its distance (an upper bound of the true one, itself at most `enough`): an overlap test needs
 ///   no more. 0: exact.
-#[inline]
+#[inline(always)]
 pub(crate) fn rect_distance(
     r: &Mat3,
     t: &Vec3,
@@ -110,11 +110,14 @@ pub(crate) fn rect_distance(
 /// rectangle.
 #[inline(always)]
 fn box_gap(q: &[Vec3; 4], l: [f64; 2]) -> f64 {
-    let lo = q[0].inf(&q[1]).inf(&q[2].inf(&q[3]));
-    let hi = q[0].sup(&q[1]).sup(&q[2].sup(&q[3]));
-    let gx = (lo.x - l[0]).max(-hi.x).max(0.0);
-    let gy = (lo.y - l[1]).max(-hi.y).max(0.0);
-    let gz = lo.z.max(-hi.z).max(0.0);
+    // Per coordinate: how far the points' span lies beyond [lo_k, hi_k] (plain comparisons: the
+    // generic componentwise min/max cost several times as much here).
+    let gap = |k: usize, lo_k: f64, hi_k: f64| {
+        let lo = least(least(q[0][k], q[1][k]), least(q[2][k], q[3][k]));
+        let hi = most(most(q[0][k], q[1][k]), most(q[2][k], q[3][k]));
+        most(most(lo - hi_k, lo_k - hi), 0.0)
+    };
+    let (gx, gy, gz) = (gap(0, 0.0, l[0]), gap(1, 0.0, l[1]), gap(2, 0.0, 0.0));
     gx * gx + gy * gy + gz * gz
 }
 
@@ -128,13 +131,23 @@ fn least(a: f64, b: f64) -> f64 {
     }
 }
 
+/// The larger of two numbers (no NaN reaches here; cheaper than `f64::max`).
+#[inline(always)]
+fn most(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 /// `p` minus its nearest point on the rectangle `[0, l[0]] x [0, l[1]] x {0}`.
 #[inline(always)]
 fn offset(p: &Vec3, l: [f64; 2]) -> Vec3 {
-    // max/min rather than clamp: no panic whatever the input.
+    // Comparisons rather than clamp: no panic whatever the input.
     Vec3::new(
-        p.x - p.x.max(0.0).min(l[0]),
-        p.y - p.y.max(0.0).min(l[1]),
+        p.x - least(most(p.x, 0.0), l[0]),
+        p.y - least(most(p.y, 0.0), l[1]),
         p.z,
     )
 }
@@ -182,8 +195,9 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
     // Each coordinate's offset keeps its sign along the edge when both ends have it, and then never
     // drops below the smaller end's: a lower bound for the whole edge.
     let gap = |a: f64, b: f64| {
-        if (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0) {
-            a.abs().min(b.abs())
+        let m = least(a.abs(), b.abs());
+        if a * b > 0.0 {
+            m
         } else {
             0.0
         }

@@ -119,25 +119,85 @@ impl Ssv {
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
     fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
+        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff)
+    }
+
+    /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame. Not inlined:
+    /// one copy of the kernel serves every caller (measured faster than inlined copies).
+    #[inline(never)]
+    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64) -> f64 {
         use SsvKind::{Line, Point, Rect};
         match (a.kind(), b.kind()) {
-            (Point, Point) => (a.origin - rel.apply(&b.origin)).norm(),
-            (Point, _) => b.core_distance(&rel.apply_inverse(&a.origin)),
-            (_, Point) => a.core_distance(&rel.apply(&b.origin)),
+            (Point, Point) => (a.origin - b.origin).norm(),
+            (Point, _) => b.core_distance(&a.origin),
+            (_, Point) => a.core_distance(&b.origin),
             (Line, Line) => {
                 let p1 = a.origin + a.axes.column(0) * a.lengths[0];
-                let q0 = rel.apply(&b.origin);
-                let q1 = q0 + rel.rot * (b.axes.column(0) * b.lengths[0]);
-                segment_segment(&a.origin, &p1, &q0, &q1).distance
+                let q1 = b.origin + b.axes.column(0) * b.lengths[0];
+                segment_segment(&a.origin, &p1, &b.origin, &q1).distance
             }
             (Line | Rect, Line | Rect) => {
-                // b's core in the frame of a's core: axes A^T rot B, corner A^T (rot ob + trans - oa).
-                let m = a.axes.tr_mul(&rel.rot);
-                let r = m * b.axes;
-                let t = m * b.origin + a.axes.tr_mul(&(rel.trans - a.origin));
+                // b's core in the frame of a's core: axes A^T B, corner A^T (ob - oa).
+                let r = a.axes.tr_mul(&b.axes);
+                let t = a.axes.tr_mul(&(b.origin - a.origin));
                 rect_distance(&r, &t, a.lengths, b.lengths, enough, cutoff)
             }
         }
+    }
+
+    /// This volume carried by `rel` into the frame `rel` maps to.
+    #[inline(always)]
+    pub(crate) fn posed(&self, rel: &RelPose) -> Ssv {
+        Ssv {
+            axes: rel.rot * self.axes,
+            origin: rel.apply(&self.origin),
+            ..*self
+        }
+    }
+
+    /// This volume carried by the inverse of `rel` (the rotation taken as orthonormal).
+    #[inline(always)]
+    pub(crate) fn posed_inverse(&self, rel: &RelPose) -> Ssv {
+        Ssv {
+            axes: rel.rot.tr_mul(&self.axes),
+            origin: rel.apply_inverse(&self.origin),
+            ..*self
+        }
+    }
+
+    /// This volume's part of the magnitudes a bound's rounding is relative to (see `slack`).
+    #[inline(always)]
+    fn scale(&self) -> f64 {
+        self.origin.x.abs()
+            + self.origin.y.abs()
+            + self.origin.z.abs()
+            + self.lengths[0]
+            + self.lengths[1]
+    }
+
+    /// The bounds of several volumes `a` against one volume `b` posed by `rel` in their frame, as
+    /// [`distance_below`](DistanceVolume::distance_below) gives them, sharing the work of posing
+    /// `b`. `inverse`: `rel` poses the `a`s in `b`'s frame instead.
+    #[inline(always)]
+    pub(crate) fn bounds_against<const N: usize>(
+        a: [&Ssv; N],
+        b: &Ssv,
+        rel: &RelPose,
+        inverse: bool,
+        cutoff: f64,
+    ) -> [f64; N] {
+        let moved = if inverse {
+            b.posed_inverse(rel)
+        } else {
+            b.posed(rel)
+        };
+        let fixed_scale = b.scale() + rel.trans.x.abs() + rel.trans.y.abs() + rel.trans.z.abs();
+        a.map(|a| {
+            let slack = BOUND_SLACK * (fixed_scale + a.scale());
+            Ssv::bound_from(a.radius + moved.radius, slack, cutoff, |core_cutoff| {
+                Ssv::cores_distance_here(a, &moved, 0.0, core_cutoff)
+            })
+        })
     }
 }
 
@@ -175,14 +235,8 @@ impl Ssv {
     /// Rounding allowance of a bound on `a` and `b` posed by `rel`.
     #[inline(always)]
     fn slack(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
-        let scale = a.origin.abs().sum()
-            + b.origin.abs().sum()
-            + rel.trans.abs().sum()
-            + a.lengths[0]
-            + a.lengths[1]
-            + b.lengths[0]
-            + b.lengths[1];
-        BOUND_SLACK * scale
+        let t = rel.trans;
+        BOUND_SLACK * (a.scale() + b.scale() + t.x.abs() + t.y.abs() + t.z.abs())
     }
 
     /// The centre of the core and the radius of a ball around the whole volume.

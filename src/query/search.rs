@@ -310,7 +310,7 @@ impl<'a> ClosestSearch<'a> {
             let mut heap = q.take();
             heap.clear();
             let mut next = Some(root);
-            'search: while let Some(p) = next.take().or_else(|| heap.pop().map(|b| b.0)) {
+            'search: while let Some(p) = next.take().or_else(|| heap.pop().map(ByBound::pair)) {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
                     // Every queued node has a bound at least this large: all are pruned.
@@ -325,7 +325,7 @@ impl<'a> ClosestSearch<'a> {
                 };
                 // The farther child waits in the queue; the nearer goes on at once if it is the
                 // nearest pending node, else waits too.
-                let near_next = heap.peek().map_or(true, |top| top.0.bound >= near.bound);
+                let near_next = heap.peek().map_or(true, |top| top.pair().bound >= near.bound);
                 for (c, go_on) in [(far, false), (near, near_next)] {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
@@ -333,14 +333,14 @@ impl<'a> ClosestSearch<'a> {
                     } else if go_on {
                         next = Some(c);
                     } else if heap.len() < qsize {
-                        heap.push(ByBound(c));
+                        heap.push(ByBound::new(c));
                     } else if self.depth_first(c, cutoff, stop) {
                         heap.clear();
                         break 'search;
                     }
                 }
             }
-            if let Some(p) = next.or_else(|| heap.peek().map(|b| b.0)) {
+            if let Some(p) = next.or_else(|| heap.peek().map(|b| b.pair())) {
                 // Left behind by a stop: the smallest bound among them bounds them all.
                 self.pruned(p.bound);
             }
@@ -385,39 +385,83 @@ pub(crate) fn expand(
         b1.nodes[a as usize].ssv_size() >= b2.nodes[b as usize].ssv_size()
     };
     let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
+    // The fixed side is posed once, in the frame of the side being split.
     Some(if split_first {
         let fixed = leaves.second.get(b, ssv2);
-        b1.nodes[a as usize].children.map(|c| NodePair {
-            a: c,
-            b,
-            bound: DistanceVolume::distance_below(&leaves.first.get(c, ssv1), &fixed, rel, cutoff),
-        })
+        let [c0, c1] = b1.nodes[a as usize].children;
+        let (v0, v1) = (leaves.first.get(c0, ssv1), leaves.first.get(c1, ssv1));
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, cutoff);
+        [
+            NodePair {
+                a: c0,
+                b,
+                bound: d0,
+            },
+            NodePair {
+                a: c1,
+                b,
+                bound: d1,
+            },
+        ]
     } else {
         let fixed = leaves.first.get(a, ssv1);
-        b2.nodes[b as usize].children.map(|c| NodePair {
-            a,
-            b: c,
-            bound: DistanceVolume::distance_below(&fixed, &leaves.second.get(c, ssv2), rel, cutoff),
-        })
+        let [c0, c1] = b2.nodes[b as usize].children;
+        let (v0, v1) = (leaves.second.get(c0, ssv2), leaves.second.get(c1, ssv2));
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, cutoff);
+        [
+            NodePair {
+                a,
+                b: c0,
+                bound: d0,
+            },
+            NodePair {
+                a,
+                b: c1,
+                bound: d1,
+            },
+        ]
     })
 }
 
-/// Orders BVTT nodes so that `BinaryHeap` pops the smallest bound first.
-struct ByBound(NodePair);
+/// A queued BVTT node, ordered so that `BinaryHeap` pops the smallest bound first. Bounds are
+/// never negative nor NaN, and the bit patterns of such doubles (with -0 made +0) order as the
+/// numbers do: the heap compares integers.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct ByBound {
+    key: u64,
+    a: NodeRef,
+    b: NodeRef,
+}
 
-impl PartialEq for ByBound {
-    fn eq(&self, other: &Self) -> bool {
-        self.0.bound.total_cmp(&other.0.bound) == Ordering::Equal
+impl ByBound {
+    #[inline(always)]
+    fn new(p: NodePair) -> Self {
+        debug_assert!(p.bound >= 0.0);
+        ByBound {
+            key: (p.bound + 0.0).to_bits(),
+            a: p.a,
+            b: p.b,
+        }
+    }
+
+    #[inline(always)]
+    fn pair(self) -> NodePair {
+        NodePair {
+            a: self.a,
+            b: self.b,
+            bound: f64::from_bits(self.key),
+        }
     }
 }
-impl Eq for ByBound {}
+
 impl PartialOrd for ByBound {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
 impl Ord for ByBound {
+    #[inline(always)]
     fn cmp(&self, other: &Self) -> Ordering {
-        other.0.bound.total_cmp(&self.0.bound)
+        other.key.cmp(&self.key)
     }
 }
