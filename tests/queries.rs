@@ -292,6 +292,63 @@ fn triangle_cache_gives_same_answers_with_less_work() {
     assert!(close(warm.distance, truth));
 }
 
+/// A result reused along a coherent motion starts each query from the BVTT front of the last one:
+/// the answers must be those of a fresh query (and of brute force), touching and overlapping
+/// frames included, for every search that keeps a front, and the work must drop.
+#[test]
+fn front_tracking_gives_same_answers_along_coherent_motion() {
+    let a = Mesh::torus(1.0, 0.3, 24, 12);
+    let b = Mesh::torus(0.8, 0.25, 20, 10);
+    let (ma, mb) = (a.model(), b.model());
+    let searches = [
+        Search::default(),
+        Search {
+            strategy: Strategy::Priority,
+            qsize: 4,
+            triangle_cache: true,
+        },
+        Search::pqp(8),
+    ];
+    for search in searches {
+        let opts = DistanceOptions {
+            search,
+            ..DistanceOptions::default()
+        };
+        let mut warm = DistanceResult::new();
+        let (mut warm_tests, mut cold_tests, mut touching) = (0, 0, 0);
+        for k in 0..120 {
+            // Model 2 tumbles slowly and passes through model 1's hole and rim, then away.
+            let s = k as f64 * 0.02;
+            let (c, sn) = (s.cos(), s.sin());
+            let (c2, s2) = ((0.7 * s).cos(), (0.7 * s).sin());
+            let rot = [[c, -sn * c2, sn * s2], [sn, c * c2, -c * s2], [0.0, s2, c2]];
+            let pa = Pose::identity();
+            let pb = Pose::new(rot, [3.4 - 1.0 * s, 0.2 * s, 0.3 - 0.1 * s]);
+            let cold = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+            distance_into(&mut warm, &ma, &pa, &mb, &pb, &opts).unwrap();
+            assert!(
+                close(cold.distance, warm.distance),
+                "frame {k}: {} vs {} ({search:?})",
+                warm.distance,
+                cold.distance
+            );
+            assert_eq!(cold.overlap, warm.overlap);
+            if k % 10 == 0 {
+                let truth = brute(&a, &pa, &b, &pb).distance;
+                assert!(close(warm.distance, truth), "frame {k}: {truth}");
+            }
+            touching += warm.overlap as usize;
+            warm_tests += warm.stats.bv_tests;
+            cold_tests += cold.stats.bv_tests;
+        }
+        assert!(touching > 5 && touching < 100, "{touching}");
+        assert!(
+            (warm_tests as f64) < 0.8 * cold_tests as f64,
+            "{warm_tests} vs {cold_tests} ({search:?})"
+        );
+    }
+}
+
 #[test]
 fn overlap_is_flagged_with_an_intersecting_pair() {
     let a = Mesh::sphere(1.0, 12, 8);

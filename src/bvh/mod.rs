@@ -171,6 +171,12 @@ impl Bvh {
         }
     }
 
+    /// The size of the root's swept sphere volume (as [`BoundingVolume::size`] measures it).
+    pub fn root_size(&self) -> f64 {
+        use crate::bounding_volume::BoundingVolume;
+        self.ssv(self.root()).size()
+    }
+
     /// Depth of the tree (a single leaf has depth 1).
     #[cfg(test)]
     pub fn depth(&self) -> usize {

@@ -1,7 +1,7 @@
 //! Separation distance, exact or within a relative/absolute error, with closest points.
 
 use super::search::{ClosestSearch, Search, Strategy};
-use super::{prepare, Stats, TriCache};
+use super::{prepare, Front, Stats, TriCache};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
@@ -77,6 +77,7 @@ pub struct DistanceResult {
     /// Work done.
     pub stats: Stats,
     pub(crate) cache: Option<TriCache>,
+    pub(crate) front: Front,
 }
 
 impl Default for DistanceResult {
@@ -90,6 +91,7 @@ impl Default for DistanceResult {
             id2: -1,
             stats: Stats::default(),
             cache: None,
+            front: Front::default(),
         }
     }
 }
@@ -140,6 +142,10 @@ pub fn distance_into(
     let (rel_err, abs_err) = (options.rel_err, options.abs_err);
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair);
+    search.record_front(std::mem::take(&mut result.front.spare));
+    let scale = b1.root_size() + b2.root_size();
+    let front = result.front.start(m1, m2, &rel, &options.search, scale);
+    let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
     // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly.
     let cutoff = |d: f64| {
@@ -149,7 +155,15 @@ pub fn distance_into(
             (d / (1.0 + rel_err)).max(d - abs_err)
         }
     };
-    search.run(&options.search, Strategy::Priority, cutoff, |d| d <= 0.0);
+    search.run_from(
+        &options.search,
+        Strategy::Priority,
+        cutoff,
+        |d| d <= 0.0,
+        front,
+    );
+    let new_front = search.take_front();
+    result.front.finish(m1, m2, rel, new_front, from_front);
     let best = search.best;
     result.stats = search.stats;
     result.distance = best.d;

@@ -53,6 +53,8 @@ pub struct Search {
     pub qsize: usize,
     /// Start from the closest triangle pair of the last query on the same two models (kept in the
     /// result), so that under coherent motion the first answer is already nearly the final one.
+    /// A priority-directed distance query also starts from the last query's BVTT front (kept in
+    /// the result too) when the models moved little since, which skips about half its bound tests.
     pub triangle_cache: bool,
 }
 
@@ -88,6 +90,14 @@ impl Search {
         }
     }
 
+    /// The strategy it runs, `auto` standing for the query's choice.
+    pub(crate) fn resolve(&self, auto: Strategy) -> Strategy {
+        match self.strategy {
+            Strategy::Auto => auto,
+            s => s,
+        }
+    }
+
     pub(crate) fn validate(&self) -> Result<(), Error> {
         if self.qsize >= 1 {
             Ok(())
@@ -118,6 +128,10 @@ pub(crate) struct ClosestSearch<'a> {
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
     pub pruned_min: f64,
     leaves: LeafVolumes,
+    /// With `Some`, every BVTT node the search leaves behind (pruned, tested as a leaf pair, or
+    /// unvisited when it stops) is recorded here: a cut of the BVTT, the front from which the next
+    /// query under coherent motion can start (see [`Front`]). `None` also when storage ran out.
+    front: Option<Vec<[NodeRef; 2]>>,
 }
 
 /// Recently met leaves' volumes of each model (see [`LeafCache`]).
@@ -145,6 +159,7 @@ impl<'a> ClosestSearch<'a> {
             stats: Stats::default(),
             pruned_min: f64::INFINITY,
             leaves: LeafVolumes::default(),
+            front: None,
         };
         if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.num_tris() && b < b2.num_tris()) {
             s.test_triangles(ta, tb);
@@ -191,6 +206,7 @@ impl<'a> ClosestSearch<'a> {
             }
             None => {
                 self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+                self.left(p);
                 None
             }
         }
@@ -207,28 +223,75 @@ impl<'a> ClosestSearch<'a> {
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
     ) {
+        self.run_from(search, auto, cutoff, stop, None)
+    }
+
+    /// As [`run`](ClosestSearch::run), starting from the BVTT nodes `front` (a cut of the BVTT:
+    /// every triangle pair lies below one of them) instead of the root, when given and the search
+    /// is priority-directed; other strategies start from the root.
+    pub fn run_from(
+        &mut self,
+        search: &Search,
+        auto: Strategy,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+        front: Option<&[[NodeRef; 2]]>,
+    ) {
         if stop(self.best.d) {
             return;
         }
+        let strategy = search.resolve(auto);
+        if let (Strategy::Priority, Some(front)) = (strategy, front) {
+            return self.priority(None, front, search.qsize, cutoff, stop);
+        }
         self.stats.bv_tests += 1;
         let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
-        let strategy = match search.strategy {
-            Strategy::Auto => auto,
-            s => s,
-        };
         match strategy {
             Strategy::Auto | Strategy::DepthFirst => {
                 self.depth_first(root, cutoff, stop);
             }
             Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
-            Strategy::Priority => self.priority(root, search.qsize, cutoff, stop),
+            Strategy::Priority => self.priority(Some(root), &[], search.qsize, cutoff, stop),
         }
+    }
+
+    /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).
+    pub fn record_front(&mut self, mut buffer: Vec<[NodeRef; 2]>) {
+        buffer.clear();
+        self.front = Some(buffer);
+    }
+
+    /// The front recorded, if it was asked for and storage did not run out.
+    pub fn take_front(&mut self) -> Option<Vec<[NodeRef; 2]>> {
+        self.front.take()
+    }
+
+    /// The bound of the BVTT node `(a, b)` (exact below `cutoff`, at least `cutoff` otherwise).
+    fn pair_bound(&mut self, a: NodeRef, b: NodeRef, cutoff: f64) -> f64 {
+        let (b1, b2) = (self.b1, self.b2);
+        let va = self.leaves.first.get(a, |r| b1.ssv(r));
+        let vb = self.leaves.second.get(b, |r| b2.ssv(r));
+        Ssv::bounds_against([&va], &vb, &self.rel, false, cutoff)[0]
     }
 
     /// Notes a pruned node; its bound, like every bound, is a lower bound on what lies below it.
     #[inline]
-    fn pruned(&mut self, bound: f64) {
-        self.pruned_min = self.pruned_min.min(bound);
+    fn pruned(&mut self, p: &NodePair) {
+        self.pruned_min = self.pruned_min.min(p.bound);
+        self.left(p);
+    }
+
+    /// Records a node the search leaves behind in the front, when it keeps one.
+    #[inline]
+    fn left(&mut self, p: &NodePair) {
+        if let Some(front) = &mut self.front {
+            if front.try_reserve(1).is_ok() {
+                front.push([p.a, p.b]);
+            } else {
+                // Out of memory: no front this time (it only saves work).
+                self.front = None;
+            }
+        }
     }
 
     /// Depth-first, nearer child first. Returns whether `stop` ended the search.
@@ -243,13 +306,17 @@ impl<'a> ClosestSearch<'a> {
         while let Some(p) = stack.pop() {
             let cut = cutoff(self.best.d);
             if p.bound >= cut {
-                self.pruned(p.bound);
+                self.pruned(&p);
                 continue;
             }
             if let Some([near, far]) = self.visit(&p, cut) {
                 stack.push(far);
                 stack.push(near);
             } else if stop(self.best.d) {
+                // Left unvisited: the front still covers them.
+                while let Some(p) = stack.pop() {
+                    self.left(&p);
+                }
                 return true;
             }
         }
@@ -273,7 +340,7 @@ impl<'a> ClosestSearch<'a> {
             while let Some(p) = queue.pop_front() {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
-                    self.pruned(p.bound);
+                    self.pruned(&p);
                     continue;
                 }
                 match self.visit(&p, cut) {
@@ -284,7 +351,7 @@ impl<'a> ClosestSearch<'a> {
             }
             // Pairs left behind by a stop are unvisited: their bounds still bound what they hold.
             for p in queue.drain(..) {
-                self.pruned_min = self.pruned_min.min(p.bound);
+                self.pruned(&p);
             }
             q.replace(queue);
         });
@@ -296,9 +363,13 @@ impl<'a> ClosestSearch<'a> {
     /// After expanding a node, its nearer child goes on at once without passing through the queue
     /// when no queued node has a smaller bound: it is the one the queue would give next anyway, so
     /// the order is the same and half the queue operations are saved.
+    ///
+    /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
+    /// bounds it computes first.
     fn priority(
         &mut self,
-        root: NodePair,
+        root: Option<NodePair>,
+        seeds: &[[NodeRef; 2]],
         qsize: usize,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
@@ -309,12 +380,35 @@ impl<'a> ClosestSearch<'a> {
         QUEUE.with(|q| {
             let mut heap = q.take();
             heap.clear();
-            let mut next = Some(root);
+            let mut next = root;
+            for (i, &[a, b]) in seeds.iter().enumerate() {
+                let cut = cutoff(self.best.d);
+                self.stats.bv_tests += 1;
+                let p = NodePair {
+                    a,
+                    b,
+                    bound: self.pair_bound(a, b, cut),
+                };
+                if p.bound >= cut {
+                    self.pruned(&p);
+                } else if heap.len() < qsize {
+                    heap.push(ByBound::new(p));
+                } else if self.depth_first(p, cutoff, stop) {
+                    // Stopped: the other seeds are left unvisited, with 0 as their bound.
+                    for &[a, b] in &seeds[i + 1..] {
+                        self.pruned(&NodePair { a, b, bound: 0.0 });
+                    }
+                    for c in heap.drain() {
+                        self.pruned(&c.pair());
+                    }
+                    break;
+                }
+            }
             'search: while let Some(p) = next.take().or_else(|| heap.pop().map(ByBound::pair)) {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
                     // Every queued node has a bound at least this large: all are pruned.
-                    self.pruned(p.bound);
+                    self.pruned(&p);
                     break;
                 }
                 let Some([near, far]) = self.visit(&p, cut) else {
@@ -325,26 +419,33 @@ impl<'a> ClosestSearch<'a> {
                 };
                 // The farther child waits in the queue; the nearer goes on at once if it is the
                 // nearest pending node, else waits too.
-                let near_next = heap.peek().map_or(true, |top| top.pair().bound >= near.bound);
+                let near_next = heap
+                    .peek()
+                    .map_or(true, |top| top.pair().bound >= near.bound);
                 for (c, go_on) in [(far, false), (near, near_next)] {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
-                        self.pruned(c.bound);
+                        self.pruned(&c);
                     } else if go_on {
                         next = Some(c);
                     } else if heap.len() < qsize {
                         heap.push(ByBound::new(c));
                     } else if self.depth_first(c, cutoff, stop) {
-                        heap.clear();
+                        if c.a == far.a && c.b == far.b {
+                            // The nearer child is left unvisited too.
+                            self.pruned(&near);
+                        }
                         break 'search;
                     }
                 }
             }
-            if let Some(p) = next.or_else(|| heap.peek().map(|b| b.pair())) {
-                // Left behind by a stop: the smallest bound among them bounds them all.
-                self.pruned(p.bound);
+            // Left behind by a stop, or by the prune that ends the search: each is pruned.
+            if let Some(p) = next {
+                self.pruned(&p);
             }
-            heap.clear();
+            for c in heap.drain() {
+                self.pruned(&c.pair());
+            }
             q.replace(heap);
         });
     }
