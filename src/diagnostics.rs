@@ -188,9 +188,16 @@ mod tests {
                 distance_into(&mut r, &a, &p1, &b, &p2, &opts).unwrap();
                 let d = r.distance;
                 assert!(d > 0.0);
+                // From its front (the same answer; the work is compared in tests/queries.rs).
+                let mut from_front = r.clone();
+                distance_into(&mut from_front, &a, &p1, &b, &p2, &opts).unwrap();
+                assert_eq!(from_front.distance, d);
+                // From the root, with the cached pair only.
+                r.forget_front();
                 distance_into(&mut r, &a, &p1, &b, &p2, &opts).unwrap();
                 assert_eq!(r.distance, d);
                 let m = minimal_bvtt(&a, &p1, &b, &p2, d).unwrap();
+
                 assert!(m.nodes_below >= 1);
                 assert_eq!(r.stats.bv_tests, m.bound_tests, "qsize {qsize}");
                 // The cached pair is tested once before the search starts.

@@ -16,6 +16,12 @@ pub struct Obb {
 /// Rounding allowance of the separation test, relative to the magnitudes that enter it. It also
 /// keeps near-parallel edge pairs, whose cross-product axis is nearly zero and all of whose terms are
 /// rounding noise, from ever separating overlapping boxes.
+/// `|v.x| + |v.y| + |v.z|` (plainly: the generic componentwise form costs more here).
+#[inline(always)]
+fn abs_sum(v: &Vec3) -> f64 {
+    v.x.abs() + v.y.abs() + v.z.abs()
+}
+
 const OVERLAP_SLACK: f64 = 64.0 * f64::EPSILON;
 
 impl Obb {
@@ -84,11 +90,7 @@ impl OverlapVolume for Obb {
         let m = a.axes.tr_mul(&rel.rot);
         let t = m * b.center + a.axes.tr_mul(&(rel.trans - a.center));
         let slack = OVERLAP_SLACK
-            * (a.center.abs().sum()
-                + b.center.abs().sum()
-                + rel.trans.abs().sum()
-                + ha.sum()
-                + hb.sum());
+            * (abs_sum(&a.center) + abs_sum(&b.center) + abs_sum(&rel.trans) + ha.sum() + hb.sum());
 
         // a's face normals, one row of R at a time: most separated pairs go at the first.
         let mut r = Mat3::zeros();
@@ -132,8 +134,7 @@ impl OverlapVolume for Obb {
     fn overlap_triangle(a: &Self, t: &Tri) -> Option<bool> {
         let h = &a.half;
         let v = [a.local(&t[0]), a.local(&t[1]), a.local(&t[2])];
-        let scale =
-            a.center.abs().sum() + t[0].abs().sum() + t[1].abs().sum() + t[2].abs().sum() + h.sum();
+        let scale = abs_sum(&a.center) + abs_sum(&t[0]) + abs_sum(&t[1]) + abs_sum(&t[2]) + h.sum();
         let slack = OVERLAP_SLACK * scale;
         // Whether the triangle's projection on `axis` (box coordinates) misses the box's.
         let apart = |axis: &Vec3| {
@@ -141,7 +142,8 @@ impl OverlapVolume for Obb {
             let lo = p0.min(p1).min(p2);
             let hi = p0.max(p1).max(p2);
             let r = h.dot(&axis.abs());
-            lo > r + slack * axis.abs().sum() || hi < -r - slack * axis.abs().sum()
+            let s = slack * abs_sum(axis);
+            lo > r + s || hi < -r - s
         };
         for i in 0..3 {
             let lo = v[0][i].min(v[1][i]).min(v[2][i]);

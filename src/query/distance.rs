@@ -101,6 +101,12 @@ impl DistanceResult {
     pub fn new() -> Self {
         Self::default()
     }
+
+    /// Drops the BVTT front kept for the next query (the triangle cache stays).
+    #[cfg(test)]
+    pub(crate) fn forget_front(&mut self) {
+        self.front = Front::default();
+    }
 }
 
 /// The separation distance between `m1` at `pose1` and `m2` at `pose2`.
