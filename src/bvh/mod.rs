@@ -17,7 +17,7 @@ mod build;
 
 pub(crate) use build::MAX_DEPTH;
 
-use crate::bounding_volume::{Obb, Ssv};
+use crate::bounding_volume::{BoundingVolume, Obb, Ssv};
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3};
 use crate::model::CollisionVolume;
@@ -35,6 +35,8 @@ pub(crate) struct Node {
     ssv_origin: Vec3,
     ssv_lengths: [f64; 2],
     ssv_radius: f64,
+    /// The swept sphere volume's size, which the descent rule compares at every step.
+    ssv_size: f64,
     /// The box's centre and half extents (see [`Obb`]).
     obb_center: Vec3,
     obb_half: Vec3,
@@ -52,6 +54,7 @@ impl Node {
             ssv_origin: ssv.origin,
             ssv_lengths: ssv.lengths,
             ssv_radius: ssv.radius,
+            ssv_size: ssv.size(),
             obb_center: obb.center,
             obb_half: obb.half,
             children: [0, 0],
@@ -78,8 +81,7 @@ impl Node {
     /// The size of the swept sphere volume (as [`BoundingVolume::size`] measures it).
     #[inline(always)]
     pub fn ssv_size(&self) -> f64 {
-        let l = self.ssv_lengths;
-        (l[0] * l[0] + l[1] * l[1]).sqrt() + 2.0 * self.ssv_radius
+        self.ssv_size
     }
 
     /// The box.
@@ -173,7 +175,6 @@ impl Bvh {
 
     /// The size of the root's swept sphere volume (as [`BoundingVolume::size`] measures it).
     pub fn root_size(&self) -> f64 {
-        use crate::bounding_volume::BoundingVolume;
         self.ssv(self.root()).size()
     }
 
