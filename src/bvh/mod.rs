@@ -178,6 +178,13 @@ impl Bvh {
         self.ssv(self.root()).size()
     }
 
+    /// A bound on the distance of every point of the model from its frame's origin.
+    pub fn reach(&self) -> f64 {
+        let v = self.ssv(self.root());
+        let l = v.lengths;
+        v.origin.norm() + (l[0] * l[0] + l[1] * l[1]).sqrt() + v.radius
+    }
+
     /// Depth of the tree (a single leaf has depth 1).
     #[cfg(test)]
     pub fn depth(&self) -> usize {

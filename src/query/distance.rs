@@ -1,7 +1,8 @@
 //! Separation distance, exact or within a relative/absolute error, with closest points.
 
+use super::front::Front;
 use super::search::{ClosestSearch, Search, Strategy};
-use super::{prepare, Front, Stats, TriCache};
+use super::{prepare, Stats, TriCache};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
@@ -148,9 +149,8 @@ pub fn distance_into(
     let (rel_err, abs_err) = (options.rel_err, options.abs_err);
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair);
-    search.record_front(std::mem::take(&mut result.front.spare));
-    let scale = b1.root_size() + b2.root_size();
-    let front = result.front.start(m1, m2, &rel, &options.search, scale);
+    search.record_front(result.front.take_spare());
+    let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
     // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly.

@@ -8,6 +8,7 @@
 
 mod collide;
 mod distance;
+mod front;
 pub(crate) mod search;
 mod tolerance;
 mod traversal;
@@ -17,7 +18,7 @@ pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
 pub use search::{Search, Strategy};
 pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
 
-use crate::bvh::{Bvh, NodeRef};
+use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
 use crate::model::Model;
@@ -64,95 +65,6 @@ impl TriCache {
         cache
             .filter(|c| search.triangle_cache && c.uid1 == m1.uid() && c.uid2 == m2.uid())
             .map(|c| (c.tri1 as usize, c.tri2 as usize))
-    }
-}
-
-/// The BVTT front of the last distance query on two models: the nodes its search left behind (a
-/// cut of the BVTT, see `search.rs`), kept in the result like the triangle cache. Under coherent
-/// motion the next query starts from it rather than from the root, so it skips re-testing the
-/// nodes above it (generalized front tracking): about half the bound tests of a search from the
-/// root. It is used only on the same two models, with the triangle cache on, for a priority-directed
-/// search, and when the relative pose moved little since (else a deep front where the models were
-/// close would cost more than it saves); a front that has grown to twice its size after the last
-/// search from the root (the models moved on, leaving fine nodes where nothing is near) is dropped.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Front {
-    uid1: u64,
-    uid2: u64,
-    /// The relative pose of the query that left the front.
-    rel: Option<RelPose>,
-    pairs: Vec<[NodeRef; 2]>,
-    /// Storage for the next front (no allocation per query once warm).
-    spare: Vec<[NodeRef; 2]>,
-    /// The front's size after the last search from the root.
-    base: usize,
-}
-
-impl Front {
-    /// A front of more than `GROWTH` times its size after the last search from the root is dropped.
-    const GROWTH: f64 = 1.1;
-    /// The relative pose may have moved by at most this much (each rotation entry, and each
-    /// translation coordinate in units of the models' root volume sizes) for the front to be used.
-    const MOTION: f64 = 0.1;
-
-    /// The front to start from, if it suits this query.
-    fn start<'a>(
-        &'a self,
-        m1: &Model,
-        m2: &Model,
-        rel: &RelPose,
-        search: &Search,
-        scale: f64,
-    ) -> Option<&'a [[NodeRef; 2]]> {
-        let prev = self.rel.as_ref()?;
-        let near = (rel.rot - prev.rot).amax() <= Self::MOTION
-            && (rel.trans - prev.trans).amax() <= Self::MOTION * scale;
-        let usable = search.triangle_cache
-            && search.resolve(Strategy::Priority) == Strategy::Priority
-            && self.uid1 == m1.uid()
-            && self.uid2 == m2.uid()
-            && !self.pairs.is_empty()
-            && near;
-        usable.then_some(&self.pairs[..])
-    }
-
-    /// Whether the front `v` of a query that started from this front has grown too large to keep.
-    fn outgrown(&self, v: &[[NodeRef; 2]], from_front: bool) -> bool {
-        from_front && v.len() as f64 > Self::GROWTH * self.base as f64
-    }
-
-    /// Keeps the front `new` of a query at `rel` (`None`: none was recorded); `from_front`: whether
-    /// that query started from this front.
-    fn finish(
-        &mut self,
-        m1: &Model,
-        m2: &Model,
-        rel: RelPose,
-        new: Option<Vec<[NodeRef; 2]>>,
-        from_front: bool,
-    ) {
-        let same = self.uid1 == m1.uid() && self.uid2 == m2.uid();
-        match new {
-            // The search stopped before visiting anything (the cached pair touches): the old front
-            // still covers every pair.
-            Some(v) if v.is_empty() && same && !self.pairs.is_empty() => {
-                self.spare = v;
-                self.rel = Some(rel);
-            }
-            Some(v) if !v.is_empty() && !self.outgrown(&v, from_front) => {
-                if !from_front {
-                    self.base = v.len();
-                }
-                self.spare = std::mem::replace(&mut self.pairs, v);
-                (self.uid1, self.uid2, self.rel) = (m1.uid(), m2.uid(), Some(rel));
-            }
-            other => {
-                // Dropped: the next query searches from the root.
-                self.spare = other.unwrap_or_default();
-                self.pairs.clear();
-                self.rel = None;
-            }
-        }
     }
 }
 

@@ -129,9 +129,10 @@ pub(crate) struct ClosestSearch<'a> {
     pub pruned_min: f64,
     leaves: LeafVolumes,
     /// With `Some`, every BVTT node the search leaves behind (pruned, tested as a leaf pair, or
-    /// unvisited when it stops) is recorded here: a cut of the BVTT, the front from which the next
-    /// query under coherent motion can start (see [`Front`]). `None` also when storage ran out.
-    front: Option<Vec<[NodeRef; 2]>>,
+    /// unvisited when it stops) is recorded here with its bound: a cut of the BVTT, the front from
+    /// which the next query under coherent motion can start (see `front.rs`). `None` also when
+    /// storage ran out.
+    front: Option<Vec<NodePair>>,
 }
 
 /// Recently met leaves' volumes of each model (see [`LeafCache`]).
@@ -167,7 +168,8 @@ impl<'a> ClosestSearch<'a> {
         s
     }
 
-    fn test_triangles(&mut self, ta: usize, tb: usize) {
+    /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance.
+    fn test_triangles(&mut self, ta: usize, tb: usize) -> f64 {
         self.stats.tri_tests += 1;
         let t2 = self.b2.tri(tb);
         let moved: Tri = [
@@ -185,6 +187,7 @@ impl<'a> ClosestSearch<'a> {
                 tb,
             };
         }
+        c.distance
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
@@ -205,8 +208,9 @@ impl<'a> ClosestSearch<'a> {
                 Some(if y.bound < x.bound { [y, x] } else { [x, y] })
             }
             None => {
-                self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
-                self.left(p);
+                let d = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+                // The pair's own distance: the tightest bound the front can keep for it.
+                self.left(&NodePair { bound: d, ..*p });
                 None
             }
         }
@@ -226,23 +230,24 @@ impl<'a> ClosestSearch<'a> {
         self.run_from(search, auto, cutoff, stop, None)
     }
 
-    /// As [`run`](ClosestSearch::run), starting from the BVTT nodes `front` (a cut of the BVTT:
+    /// As [`run`](ClosestSearch::run), starting from the BVTT nodes of `front` (a cut of the BVTT:
     /// every triangle pair lies below one of them) instead of the root, when given and the search
-    /// is priority-directed; other strategies start from the root.
+    /// is priority-directed; other strategies start from the root. A front node's bound less the
+    /// front's `shrink` is a lower bound on the distance of the triangles below it now.
     pub fn run_from(
         &mut self,
         search: &Search,
         auto: Strategy,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
-        front: Option<&[[NodeRef; 2]]>,
+        front: Option<(&[NodePair], f64)>,
     ) {
         if stop(self.best.d) {
             return;
         }
         let strategy = search.resolve(auto);
-        if let (Strategy::Priority, Some(front)) = (strategy, front) {
-            return self.priority(None, front, search.qsize, cutoff, stop);
+        if let (Strategy::Priority, Some((front, shrink))) = (strategy, front) {
+            return self.priority(None, front, shrink, search.qsize, cutoff, stop);
         }
         self.stats.bv_tests += 1;
         let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
@@ -251,18 +256,18 @@ impl<'a> ClosestSearch<'a> {
                 self.depth_first(root, cutoff, stop);
             }
             Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
-            Strategy::Priority => self.priority(Some(root), &[], search.qsize, cutoff, stop),
+            Strategy::Priority => self.priority(Some(root), &[], 0.0, search.qsize, cutoff, stop),
         }
     }
 
     /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).
-    pub fn record_front(&mut self, mut buffer: Vec<[NodeRef; 2]>) {
+    pub fn record_front(&mut self, mut buffer: Vec<NodePair>) {
         buffer.clear();
         self.front = Some(buffer);
     }
 
     /// The front recorded, if it was asked for and storage did not run out.
-    pub fn take_front(&mut self) -> Option<Vec<[NodeRef; 2]>> {
+    pub fn take_front(&mut self) -> Option<Vec<NodePair>> {
         self.front.take()
     }
 
@@ -286,7 +291,7 @@ impl<'a> ClosestSearch<'a> {
     fn left(&mut self, p: &NodePair) {
         if let Some(front) = &mut self.front {
             if front.try_reserve(1).is_ok() {
-                front.push([p.a, p.b]);
+                front.push(*p);
             } else {
                 // Out of memory: no front this time (it only saves work).
                 self.front = None;
@@ -365,11 +370,13 @@ impl<'a> ClosestSearch<'a> {
     /// the order is the same and half the queue operations are saved.
     ///
     /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
-    /// bounds it computes first.
+    /// bounds less `shrink` still bound them: a seed that this puts beyond the cutoff is pruned at
+    /// once, the others are tested first.
     fn priority(
         &mut self,
         root: Option<NodePair>,
-        seeds: &[[NodeRef; 2]],
+        seeds: &[NodePair],
+        shrink: f64,
         qsize: usize,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
@@ -381,8 +388,17 @@ impl<'a> ClosestSearch<'a> {
             let mut heap = q.take();
             heap.clear();
             let mut next = root;
-            for (i, &[a, b]) in seeds.iter().enumerate() {
+            for (i, seed) in seeds.iter().enumerate() {
                 let cut = cutoff(self.best.d);
+                let (a, b) = (seed.a, seed.b);
+                let old = seed.bound - shrink;
+                if old >= cut {
+                    self.pruned(&NodePair {
+                        bound: old,
+                        ..*seed
+                    });
+                    continue;
+                }
                 self.stats.bv_tests += 1;
                 let p = NodePair {
                     a,
@@ -395,8 +411,8 @@ impl<'a> ClosestSearch<'a> {
                     heap.push(ByBound::new(p));
                 } else if self.depth_first(p, cutoff, stop) {
                     // Stopped: the other seeds are left unvisited, with 0 as their bound.
-                    for &[a, b] in &seeds[i + 1..] {
-                        self.pruned(&NodePair { a, b, bound: 0.0 });
+                    for s in &seeds[i + 1..] {
+                        self.pruned(&NodePair { bound: 0.0, ..*s });
                     }
                     for c in heap.drain() {
                         self.pruned(&c.pair());
