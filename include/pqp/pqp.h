@@ -269,7 +269,8 @@ typedef struct pqp_search_options {
     int qsize;
     /**
      * 1: start from the closest triangle pair of the last query on the same two models, kept in
-     * the result object (triangle caching); 0: start afresh.
+     * the result object (triangle caching), and for a priority-directed distance query after a
+     * small motion from that query's BVTT front (front tracking); 0: start afresh.
      */
     int triangle_cache;
 } pqp_search_options;
@@ -564,8 +565,9 @@ void pqp_distance_result_destroy(struct pqp_distance_result *r);
  * true <= distance <= min(true * (1 + rel_err), true + abs_err); abs_err = 0 asks for the exact
  * distance whatever rel_err is (as in PQP), abs_err = +infinity lets only rel_err act. When the
  * models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1. Reusing r
- * for the next query on the same two models starts from the last closest triangle pair (the
- * triangle cache lives in r, so models stay shareable).
+ * for the next query on the same two models starts from the last closest triangle pair and,
+ * after a small motion, from the last query's BVTT front (both live in r, so models stay
+ * shareable).
  *
  * @param r        the result to fill (its previous answer is replaced).
  * @param R1, T1   the pose of model 1.

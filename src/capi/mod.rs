@@ -111,7 +111,8 @@ pub struct pqp_search_options {
     /// 0 for unbounded. Must not be negative.
     pub qsize: c_int,
     /// 1: start from the closest triangle pair of the last query on the same two models, kept in
-    /// the result object (triangle caching); 0: start afresh.
+    /// the result object (triangle caching), and for a priority-directed distance query after a
+    /// small motion from that query's BVTT front (front tracking); 0: start afresh.
     pub triangle_cache: c_int,
 }
 
