@@ -1,7 +1,7 @@
 //! Separation distance, exact or within a relative/absolute error, with closest points.
 
 use super::front::Front;
-use super::search::{ClosestSearch, Search, Strategy};
+use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
 use super::{prepare, Stats, TriCache};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
@@ -148,7 +148,8 @@ pub fn distance_into(
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let (rel_err, abs_err) = (options.rel_err, options.abs_err);
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
-    let mut search = ClosestSearch::new(b1, b2, rel, start_pair);
+    let mut leaves = LeafVolumes::default();
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
     search.record_front(result.front.take_spare());
     let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
     let from_front = front.is_some();

@@ -127,7 +127,8 @@ pub(crate) struct ClosestSearch<'a> {
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
     pub pruned_min: f64,
-    leaves: LeafVolumes,
+    /// The caller's (a few kilobytes: made in place there rather than moved with the search).
+    leaves: &'a mut LeafVolumes,
     /// With `Some`, every BVTT node the search leaves behind (pruned, tested as a leaf pair, or
     /// unvisited when it stops) is recorded here with its bound: a cut of the BVTT, the front from
     /// which the next query under coherent motion can start (see `front.rs`). `None` also when
@@ -145,7 +146,13 @@ pub(crate) struct LeafVolumes {
 impl<'a> ClosestSearch<'a> {
     /// A search whose first answer is the given triangle pair (the cached one), if any; otherwise
     /// it starts with no answer (distance infinite).
-    pub fn new(b1: &'a Bvh, b2: &'a Bvh, rel: RelPose, start: Option<(usize, usize)>) -> Self {
+    pub fn new(
+        b1: &'a Bvh,
+        b2: &'a Bvh,
+        rel: RelPose,
+        start: Option<(usize, usize)>,
+        leaves: &'a mut LeafVolumes,
+    ) -> Self {
         let mut s = ClosestSearch {
             b1,
             b2,
@@ -159,7 +166,7 @@ impl<'a> ClosestSearch<'a> {
             },
             stats: Stats::default(),
             pruned_min: f64::INFINITY,
-            leaves: LeafVolumes::default(),
+            leaves,
             front: None,
         };
         if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.num_tris() && b < b2.num_tris()) {
@@ -201,7 +208,7 @@ impl<'a> ClosestSearch<'a> {
             p.a,
             p.b,
             cutoff,
-            &mut self.leaves,
+            self.leaves,
         ) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;

@@ -1,6 +1,6 @@
 //! Tolerance: are two posed models within distance `t` of each other?
 
-use super::search::{ClosestSearch, Search, Strategy};
+use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
 use super::{prepare, Stats, TriCache};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
@@ -104,7 +104,8 @@ pub fn tolerance_into(
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, search);
     let options = search;
-    let mut search = ClosestSearch::new(b1, b2, rel, start_pair);
+    let mut leaves = LeafVolumes::default();
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
     // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair:
     // the cutoff is the least bound above the tolerance, or the best distance if smaller.
     let above = if tolerance < f64::INFINITY {
