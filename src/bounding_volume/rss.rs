@@ -28,6 +28,11 @@ pub(super) fn fit(
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
     for i in 0..count {
         let q = local(i);
+        // As the allowance is not negative, a point within the extents so far cannot move them:
+        // only one outside needs its allowance (and its square root).
+        if q.x >= x0 && q.x <= x1 && q.y >= y0 && q.y <= y1 {
+            continue;
+        }
         let h = allowance(r, q.z - zc);
         x0 = x0.min(q.x + h);
         x1 = x1.max(q.x - h);

@@ -39,6 +39,13 @@ impl Bvh {
         ids.try_reserve_exact(n).map_err(oom)?;
         ids.extend(tris.iter().map(|(_, id)| *id));
         drop(tris);
+        // At least every vertex's `|p|_1` (twice the largest, which is rounded): for the rounding
+        // allowances of `fit_volumes`.
+        let scale = 2.0
+            * corners
+                .as_flattened()
+                .iter()
+                .fold(0.0f64, |m, p| m.max(p.abs().sum()));
         let mut nodes: Vec<Node> = Vec::new();
         nodes.try_reserve_exact(n - 1).map_err(oom)?;
         // Scratch: the node's vertices in its frame, and its triangles' split keys.
@@ -60,7 +67,7 @@ impl Bvh {
             // The frame exactly as the node will give it back.
             let axes = frame_from(&a.column(0).into(), &a.column(1).into());
             let axis: Vec3 = axes.column(0).into();
-            let (ssv, obb) = fit_volumes(volume, &axes, points, &mut local);
+            let (ssv, obb) = fit_volumes(volume, &axes, points, scale, &mut local);
             let mut node = Node::new(&ssv, &obb);
             let mid = split(
                 &mut corners[lo..hi],
@@ -261,11 +268,13 @@ fn split(
 /// The node's volumes on `axes` around its `points` (not empty): the swept sphere volume of the
 /// model's kind (for the hybrid the kind that suits the points) and the box. The same as
 /// [`Ssv::fit`] and [`Obb::fit`], bit for bit, for less work: the points are taken into the frame
-/// once for all the fits (into `local`, scratch), and both volumes are covered in one pass.
+/// once for all the fits (into `local`, scratch), and both volumes are covered in one pass that
+/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
 fn fit_volumes(
     volume: VolumeKind,
     axes: &Mat3,
     points: &[Vec3],
+    scale: f64,
     local: &mut Vec<Vec3>,
 ) -> (Ssv, Obb) {
     let first = axes.tr_mul(&points[0]);
@@ -297,17 +306,69 @@ fn fit_volumes(
     };
     let mut ssv = Ssv::fit_uncovered(kind, axes, points.len(), at, lo.z, hi.z);
     let mut obb = Obb::from_bounds(axes, &lo, &hi);
-    // Both covers in one pass: the largest squared distance, then its root (see `Ssv::cover`).
+
+    // Both covers in one pass, each exactly as `Ssv::cover` and `Obb::cover` do it, but only for
+    // the points that might move them. A point's offsets from a volume's reference point, as the
+    // covers compute them (`A^T (p - o)`, rounded), differ from `q - A^T o` (`q = A^T p` the
+    // point in the frame, also rounded) by less than `slack`: a few roundings of terms no larger
+    // than `|A| (|p|_1 + |o|_1)`, each at most `EPSILON / 2` of them; COVER_SLACK allows ten times
+    // that. A point whose offsets are inside the volume by more than that (and by a relative
+    // margin for the rounding of the test itself) is inside as the covers measure it, so it
+    // leaves them unchanged: skipping it gives the same volumes, bit for bit. Only points within
+    // the margin of a boundary, usually a few per node, take the exact computation.
+    let amax = axes.amax();
+    let ssv_ref = axes.tr_mul(&ssv.origin);
+    let ssv_slack = COVER_SLACK * amax * (scale + ssv.origin.abs().sum());
+    let r2_inside = ssv.radius * ssv.radius * (1.0 - COVER_SLACK);
+    let [l0, l1] = ssv.lengths;
+    let obb_ref = axes.tr_mul(&obb.center);
+    let obb_slack = COVER_SLACK * amax * (scale + obb.center.abs().sum());
+    let half_inside = obb.half * (1.0 - COVER_SLACK);
+    // The largest squared distance, then its root (as `Ssv::cover`).
     let mut far2 = 0.0f64;
-    for p in points {
-        let d2 = ssv.core_distance_squared(p);
-        if d2 > far2 {
-            far2 = d2;
+    for (p, q) in points.iter().zip(local) {
+        let s = q - ssv_ref;
+        let dx = outside(s.x, l0) + ssv_slack;
+        let dy = outside(s.y, l1) + ssv_slack;
+        let dz = s.z.abs() + ssv_slack;
+        let ssv_inside = dx * dx + dy * dy + dz * dz < r2_inside;
+        let b = q - obb_ref;
+        // Non-short-circuit `&`: one well-predicted branch rather than four.
+        let obb_inside = (b.x.abs() + obb_slack < half_inside.x)
+            & (b.y.abs() + obb_slack < half_inside.y)
+            & (b.z.abs() + obb_slack < half_inside.z);
+        if ssv_inside & obb_inside {
+            continue;
         }
-        obb.cover_point(p);
+        if !ssv_inside {
+            let d2 = ssv.core_distance_squared(p);
+            if d2 > far2 {
+                far2 = d2;
+            }
+        }
+        if !obb_inside {
+            obb.cover_point(p);
+        }
     }
     ssv.radius = ssv.radius.max(far2.sqrt());
     (ssv, obb)
+}
+
+/// Bound on the rounding of a volume's offsets from a point (see `fit_volumes`), relative to the
+/// magnitudes involved, and the relative margin of the test that uses it.
+const COVER_SLACK: f64 = 64.0 * f64::EPSILON;
+
+/// How far `x` is outside `[0, len]` (`len >= 0`), without branches.
+#[inline(always)]
+fn outside(x: f64, len: f64) -> f64 {
+    let below = -x;
+    let above = x - len;
+    let d = if below > above { below } else { above };
+    if d > 0.0 {
+        d
+    } else {
+        0.0
+    }
 }
 
 /// The smallest by volume of the three fits (covered; arguments as [`Ssv::fit_uncovered`] takes
@@ -482,6 +543,41 @@ mod tests {
             .collect();
         let b = build_checked(tris);
         assert!(b.depth() <= MAX_DEPTH, "depth {}", b.depth());
+    }
+
+    #[test]
+    fn node_fits_equal_the_separate_fits() {
+        // `fit_volumes` (shared frame coordinates, skipped covers) gives exactly the volumes of
+        // `Ssv::fit` and `Obb::fit`, on clouds, flat and duplicated sets, far from the origin.
+        let mut s = 5u64;
+        let mut local = Vec::new();
+        for case in 0..400 {
+            let n = 1 + case % 37;
+            let (scale, offset) = [(1.0, 0.0), (1e-3, 7.0), (1e4, -3e6), (1.0, 1e9)][case % 4];
+            let flat = case % 5 == 0;
+            let mut pts: Vec<Vec3> = (0..n)
+                .map(|_| {
+                    let z = if flat { 0.25 } else { lcg(&mut s) };
+                    (Vec3::new(lcg(&mut s), 0.3 * lcg(&mut s), z) * scale).add_scalar(offset)
+                })
+                .collect();
+            if case % 3 == 0 {
+                let dup = pts.clone();
+                pts.extend(dup);
+            }
+            let a = principal_axes(&pts);
+            let axes = frame_from(&a.column(0).into(), &a.column(1).into());
+            let scale = 2.0 * pts.iter().fold(0.0f64, |m, p| m.max(p.abs().sum()));
+            for (volume, kind) in [
+                (VolumeKind::Pss, SsvKind::Point),
+                (VolumeKind::Lss, SsvKind::Line),
+                (VolumeKind::Rss, SsvKind::Rect),
+            ] {
+                let (ssv, obb) = fit_volumes(volume, &axes, &pts, scale, &mut local);
+                assert_eq!(ssv, Ssv::fit(kind, &axes, &pts), "case {case} {kind:?}");
+                assert_eq!(obb, Obb::fit(&axes, &pts), "case {case}");
+            }
+        }
     }
 
     #[test]
