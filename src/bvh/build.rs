@@ -62,19 +62,23 @@ impl Bvh {
             nodes.push(placeholder());
         }
         while let Some((ni, lo, hi, depth)) = work.pop() {
-            let points = corners[lo..hi].as_flattened();
-            let a = principal_axes(points);
+            let a = principal_axes(corners[lo..hi].as_flattened());
             // The frame exactly as the node will give it back.
             let axes = frame_from(&a.column(0).into(), &a.column(1).into());
-            let axis: Vec3 = axes.column(0).into();
-            let (ssv, obb) = fit_volumes(volume, &axes, points, scale, &mut local);
+            let (ssv, obb) = fit_volumes(
+                volume,
+                &axes,
+                &corners[lo..hi],
+                scale,
+                &mut local,
+                &mut keys,
+            );
             let mut node = Node::new(&ssv, &obb);
             let mid = split(
                 &mut corners[lo..hi],
                 &mut ids[lo..hi],
-                &axis,
-                depth >= MEAN_SPLIT_MAX_DEPTH,
                 &mut keys,
+                depth >= MEAN_SPLIT_MAX_DEPTH,
             );
             for (k, (clo, chi)) in [(lo, lo + mid), (lo + mid, hi)].into_iter().enumerate() {
                 node.children[k] = if chi - clo == 1 {
@@ -221,19 +225,19 @@ fn placeholder() -> Node {
     )
 }
 
-/// Partitions the triangles `tris` (at least two; their `ids` alongside) and returns how many go to
-/// the first child (never 0 nor all): those whose centroid projects below the mean, or the lower
-/// half by projection when the mean splits nothing off or `median` is asked for.
-fn split(
-    tris: &mut [Tri],
-    ids: &mut [i32],
-    axis: &Vec3,
-    median: bool,
-    keys: &mut Vec<f64>,
-) -> usize {
+/// A triangle's split key: its centroid's projection on the splitting axis.
+#[inline(always)]
+fn split_key(t: &Tri, axis: &Vec3) -> f64 {
+    ((t[0] + t[1] + t[2]) / 3.0).dot(axis)
+}
+
+/// Partitions the triangles `tris` (at least two; their `ids` and split `keys` alongside) and
+/// returns how many go to the first child (never 0 nor all): those whose centroid projects below
+/// the mean, or the lower half by projection when the mean splits nothing off or `median` is asked
+/// for.
+fn split(tris: &mut [Tri], ids: &mut [i32], keys: &mut [f64], median: bool) -> usize {
     let count = tris.len();
-    keys.clear();
-    keys.extend(tris.iter().map(|t| ((t[0] + t[1] + t[2]) / 3.0).dot(axis)));
+    debug_assert_eq!(keys.len(), count);
     if !median {
         let mean = keys.iter().sum::<f64>() / count as f64;
         let mut left = 0;
@@ -269,30 +273,38 @@ fn split(
 /// model's kind (for the hybrid the kind that suits the points) and the box. The same as
 /// [`Ssv::fit`] and [`Obb::fit`], bit for bit, for less work: the points are taken into the frame
 /// once for all the fits (into `local`, scratch), and both volumes are covered in one pass that
-/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
+/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`. While the
+/// triangles are at hand, puts their split keys (see [`split_key`]) into `keys`.
 fn fit_volumes(
     volume: VolumeKind,
     axes: &Mat3,
-    points: &[Vec3],
+    tris: &[Tri],
     scale: f64,
     local: &mut Vec<Vec3>,
+    keys: &mut Vec<f64>,
 ) -> (Ssv, Obb) {
+    let points = tris.as_flattened();
+    let axis: Vec3 = axes.column(0).into();
     let first = axes.tr_mul(&points[0]);
     let (mut lo, mut hi) = (first, first);
     local.clear();
-    local.extend(points.iter().map(|p| {
-        let q = axes.tr_mul(p);
-        // Plain comparisons rather than `f64::min`: no NaN here to handle.
-        for k in 0..3 {
-            if q[k] < lo[k] {
-                lo[k] = q[k];
+    keys.clear();
+    for t in tris {
+        keys.push(split_key(t, &axis));
+        for p in t {
+            let q = axes.tr_mul(p);
+            // Plain comparisons rather than `f64::min`: no NaN here to handle.
+            for k in 0..3 {
+                if q[k] < lo[k] {
+                    lo[k] = q[k];
+                }
+                if q[k] > hi[k] {
+                    hi[k] = q[k];
+                }
             }
-            if q[k] > hi[k] {
-                hi[k] = q[k];
-            }
+            local.push(q);
         }
-        q
-    }));
+    }
     let local = &local[..];
     let at = |i: usize| local[i];
     let kind = match volume {
@@ -551,21 +563,22 @@ mod tests {
         // `Ssv::fit` and `Obb::fit`, on clouds, flat and duplicated sets, far from the origin.
         let mut s = 5u64;
         let mut local = Vec::new();
+        let mut keys = Vec::new();
         for case in 0..400 {
             let n = 1 + case % 37;
             let (scale, offset) = [(1.0, 0.0), (1e-3, 7.0), (1e4, -3e6), (1.0, 1e9)][case % 4];
             let flat = case % 5 == 0;
-            let mut pts: Vec<Vec3> = (0..n)
-                .map(|_| {
-                    let z = if flat { 0.25 } else { lcg(&mut s) };
-                    (Vec3::new(lcg(&mut s), 0.3 * lcg(&mut s), z) * scale).add_scalar(offset)
-                })
-                .collect();
+            let mut point = || {
+                let z = if flat { 0.25 } else { lcg(&mut s) };
+                (Vec3::new(lcg(&mut s), 0.3 * lcg(&mut s), z) * scale).add_scalar(offset)
+            };
+            let mut tris: Vec<Tri> = (0..n).map(|_| [point(), point(), point()]).collect();
             if case % 3 == 0 {
-                let dup = pts.clone();
-                pts.extend(dup);
+                let dup = tris.clone();
+                tris.extend(dup);
             }
-            let a = principal_axes(&pts);
+            let pts = tris.as_flattened();
+            let a = principal_axes(pts);
             let axes = frame_from(&a.column(0).into(), &a.column(1).into());
             let scale = 2.0 * pts.iter().fold(0.0f64, |m, p| m.max(p.abs().sum()));
             for (volume, kind) in [
@@ -573,9 +586,12 @@ mod tests {
                 (VolumeKind::Lss, SsvKind::Line),
                 (VolumeKind::Rss, SsvKind::Rect),
             ] {
-                let (ssv, obb) = fit_volumes(volume, &axes, &pts, scale, &mut local);
-                assert_eq!(ssv, Ssv::fit(kind, &axes, &pts), "case {case} {kind:?}");
-                assert_eq!(obb, Obb::fit(&axes, &pts), "case {case}");
+                let (ssv, obb) = fit_volumes(volume, &axes, &tris, scale, &mut local, &mut keys);
+                assert_eq!(ssv, Ssv::fit(kind, &axes, pts), "case {case} {kind:?}");
+                assert_eq!(obb, Obb::fit(&axes, pts), "case {case}");
+                let axis: Vec3 = axes.column(0).into();
+                let want: Vec<f64> = tris.iter().map(|t| split_key(t, &axis)).collect();
+                assert_eq!(keys, want);
             }
         }
     }
