@@ -4,12 +4,14 @@
 use super::ssv::{allowance, ball_centre, Ssv};
 use crate::math::{Mat3, Vec3};
 
-/// A capsule containing every point (not empty), its segment along `axes.column(0)`.
-pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
+/// A capsule containing every point (not empty), its segment along `axes.column(0)`, before
+/// [`Ssv::cover`].
+/// `local(i)` is the `i`th of the `count` points in the frame `axes`.
+pub(super) fn fit(axes: &Mat3, count: usize, local: impl Fn(usize) -> Vec3) -> Ssv {
     // The segment's line: through the centre of a small disc around the points' projections on the
     // plane of the other two axes; the radius must reach the farthest of them.
-    let (c, r2) = ball_centre(points.len(), |i| {
-        let q = axes.tr_mul(&points[i]);
+    let (c, r2) = ball_centre(count, |i| {
+        let q = local(i);
         Vec3::new(0.0, q.y, q.z)
     });
     let r = r2.sqrt();
@@ -17,8 +19,8 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
     // the line) and still be in the end cap: the segment need only reach each projection minus (or
     // plus) it. These extents are the least that keep every point in.
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for p in points {
-        let q = axes.tr_mul(p);
+    for i in 0..count {
+        let q = local(i);
         let (dy, dz) = (q.y - c.y, q.z - c.z);
         let h = allowance(r, (dy * dy + dz * dz).sqrt());
         x0 = x0.min(q.x + h);
@@ -35,5 +37,4 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
         lengths: [(x1 - x0).max(0.0), 0.0],
         radius: r,
     }
-    .cover(points)
 }

@@ -51,19 +51,35 @@ impl Obb {
             lo = lo.inf(&q);
             hi = hi.sup(&q);
         }
+        Obb::from_bounds(axes, &lo, &hi).cover(points)
+    }
+
+    /// The box on `axes` spanning `lo` to `hi` (frame coordinates), before [`cover`](Obb::cover).
+    #[inline]
+    pub(crate) fn from_bounds(axes: &Mat3, lo: &Vec3, hi: &Vec3) -> Self {
         // Halve before adding: no overflow whatever the magnitudes.
         let mid = lo * 0.5 + hi * 0.5;
-        let mut obb = Obb {
+        Obb {
             axes: *axes,
             center: axes * mid,
             half: (hi * 0.5 - lo * 0.5).sup(&Vec3::zeros()),
-        };
-        // Rounding of the centre may leave a point a few ulps out: take the extents up to the
-        // offsets exactly as `contains` measures them.
-        for p in points {
-            obb.half = obb.half.sup(&obb.local(p).abs());
         }
-        obb
+    }
+
+    /// Rounding of the centre may leave a point a few ulps out: takes the extents up to the offsets
+    /// exactly as `contains` measures them.
+    #[inline]
+    pub(crate) fn cover(mut self, points: &[Vec3]) -> Self {
+        for p in points {
+            self.cover_point(p);
+        }
+        self
+    }
+
+    /// [`cover`](Obb::cover) for one point.
+    #[inline(always)]
+    pub(crate) fn cover_point(&mut self, p: &Vec3) {
+        self.half = self.half.sup(&self.local(p).abs());
     }
 }
 

@@ -7,16 +7,16 @@ use crate::math::{Mat3, Vec3};
 /// The rectangle swept sphere containing every point (not empty), its rectangle on the first two
 /// axes: the plane halves the points' spread along the normal, and the rectangle is the smallest
 /// that keeps every point within the radius, growing where a point beside a corner needs it.
-pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
-    let n: Vec3 = axes.column(2).into();
-
+/// `local(i)` is the `i`th of the `count` points in the frame `axes`; `zmin` and `zmax` are the
+/// least and greatest `local(i).z`. Before [`Ssv::cover`].
+pub(super) fn fit(
+    axes: &Mat3,
+    count: usize,
+    local: impl Fn(usize) -> Vec3,
+    zmin: f64,
+    zmax: f64,
+) -> Ssv {
     // The plane halves the spread along the normal; the radius is half that spread.
-    let (mut zmin, mut zmax) = (n.dot(&points[0]), n.dot(&points[0]));
-    for p in points {
-        let z = n.dot(p);
-        zmin = zmin.min(z);
-        zmax = zmax.max(z);
-    }
     // Halve before adding: no overflow whatever the magnitudes.
     let zc = 0.5 * zmin + 0.5 * zmax;
     let r = (0.5 * zmax - 0.5 * zmin).max(0.0);
@@ -26,8 +26,13 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
     // every point is within reach along each axis alone.
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for p in points {
-        let q = axes.tr_mul(p);
+    for i in 0..count {
+        let q = local(i);
+        // As the allowance is not negative, a point within the extents so far cannot move them:
+        // only one outside needs its allowance (and its square root).
+        if q.x >= x0 && q.x <= x1 && q.y >= y0 && q.y <= y1 {
+            continue;
+        }
         let h = allowance(r, q.z - zc);
         x0 = x0.min(q.x + h);
         x1 = x1.max(q.x - h);
@@ -46,9 +51,8 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
 
     // A point beside a corner may still be out of reach (its allowance is a disc, not a square):
     // grow the side that costs the least volume to bring it in. Growing never loses a point.
-    for p in points {
-        let q = axes.tr_mul(p);
-        let h = allowance(r, q.z - zc);
+    for i in 0..count {
+        let q = local(i);
         let (dx, grow_hi_x) = if q.x > x1 {
             (q.x - x1, true)
         } else {
@@ -59,7 +63,11 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
         } else {
             (y0 - q.y, false)
         };
-        if dx <= 0.0 || dy <= 0.0 || dx * dx + dy * dy <= h * h {
+        if dx <= 0.0 || dy <= 0.0 {
+            continue;
+        }
+        let h = allowance(r, q.z - zc);
+        if dx * dx + dy * dy <= h * h {
             continue;
         }
         // Growth along one axis that brings the corner line of the other within reach. Should
@@ -99,5 +107,4 @@ pub(super) fn fit(axes: &Mat3, points: &[Vec3]) -> Ssv {
         lengths: [(x1 - x0).max(0.0), (y1 - y0).max(0.0)],
         radius: r,
     }
-    .cover(points)
 }

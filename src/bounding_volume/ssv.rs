@@ -62,10 +62,36 @@ impl Ssv {
                 radius: 0.0,
             };
         }
+        let local = |i: usize| axes.tr_mul(&points[i]);
+        let z = |i: usize| local(i).z;
+        let (mut zmin, mut zmax) = (z(0), z(0));
+        if kind == SsvKind::Rect {
+            for i in 0..points.len() {
+                zmin = zmin.min(z(i));
+                zmax = zmax.max(z(i));
+            }
+        }
+        Ssv::fit_uncovered(kind, axes, points.len(), local, zmin, zmax).cover(points)
+    }
+
+    /// [`fit`](Ssv::fit) before [`cover`](Ssv::cover), from the `count` (> 0) points in the frame:
+    /// `local(i) == axes.tr_mul(&points[i])`, the same bits. For a rectangle, `zmin` and `zmax`
+    /// are the least and greatest `local(i).z`. The builder computes the points in the frame once
+    /// for all the volumes it fits on it.
+    #[inline]
+    pub(crate) fn fit_uncovered(
+        kind: SsvKind,
+        axes: &Mat3,
+        count: usize,
+        local: impl Fn(usize) -> Vec3 + Copy,
+        zmin: f64,
+        zmax: f64,
+    ) -> Ssv {
+        debug_assert!(count > 0);
         match kind {
-            SsvKind::Point => super::pss::fit(axes, points),
-            SsvKind::Line => super::lss::fit(axes, points),
-            SsvKind::Rect => super::rss::fit(axes, points),
+            SsvKind::Point => super::pss::fit(axes, count, local),
+            SsvKind::Line => super::lss::fit(axes, count, local),
+            SsvKind::Rect => super::rss::fit(axes, count, local, zmin, zmax),
         }
     }
 
@@ -86,18 +112,28 @@ impl Ssv {
     /// sides, for which the clamps below pin the coordinates to 0.
     #[inline]
     pub(crate) fn core_distance(&self, p: &Vec3) -> f64 {
+        self.core_distance_squared(p).sqrt()
+    }
+
+    /// The square of [`core_distance`](Ssv::core_distance), as it computes it before the root.
+    #[inline(always)]
+    pub(crate) fn core_distance_squared(&self, p: &Vec3) -> f64 {
         let q = self.axes.tr_mul(&(p - self.origin));
         let dx = outside(q.x, 0.0, self.lengths[0]);
         let dy = outside(q.y, 0.0, self.lengths[1]);
-        (dx * dx + dy * dy + q.z * q.z).sqrt()
+        dx * dx + dy * dy + q.z * q.z
     }
 
     /// Takes the radius up to every point's distance from the core, exactly as `contains` measures
     /// it: the fits' rounding may otherwise leave a point a few ulps out.
-    pub(super) fn cover(mut self, points: &[Vec3]) -> Ssv {
+    pub(crate) fn cover(mut self, points: &[Vec3]) -> Ssv {
+        // The largest squared distance, then one square root: as the square root is correctly
+        // rounded it is monotonic, so this is the largest of the points' distances, bit for bit.
+        let mut far2 = 0.0f64;
         for p in points {
-            self.radius = self.radius.max(self.core_distance(p));
+            far2 = far2.max(self.core_distance_squared(p));
         }
+        self.radius = self.radius.max(far2.sqrt());
         self
     }
 
