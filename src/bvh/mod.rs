@@ -178,6 +178,19 @@ impl Bvh {
         self.ssv(self.root()).size()
     }
 
+    /// A point `o` of node `r`'s volume and a bound `e` on the distance of its points from `o`.
+    #[inline]
+    pub fn anchor(&self, r: NodeRef) -> (Vec3, f64) {
+        if r >= 0 {
+            let n = &self.nodes[r as usize];
+            // The rectangle's corner: every point is within its diagonal plus the radius.
+            (n.ssv_origin, n.ssv_size)
+        } else {
+            let [a, b, c] = self.tri(leaf_triangle(r));
+            (a, (b - a).norm().max((c - a).norm()))
+        }
+    }
+
     /// A bound on the distance of every point of the model from its frame's origin.
     pub fn reach(&self) -> f64 {
         let v = self.ssv(self.root());

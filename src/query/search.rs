@@ -9,6 +9,7 @@
 //! bounds the queue (see [`Search::DEFAULT_QSIZE`]) so that where the bounds cannot tell pairs apart
 //! the overflow goes depth-first instead of growing a heap of a million pairs.
 
+use super::front::Motion;
 use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
 use crate::bounding_volume::{DistanceVolume, Ssv};
@@ -201,15 +202,7 @@ impl<'a> ClosestSearch<'a> {
     /// their bounds (exact below `cutoff`), nearer first.
     #[inline]
     fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
-        match expand(
-            self.b1,
-            self.b2,
-            &self.rel,
-            p.a,
-            p.b,
-            cutoff,
-            self.leaves,
-        ) {
+        match expand(self.b1, self.b2, &self.rel, p.a, p.b, cutoff, self.leaves) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;
                 Some(if y.bound < x.bound { [y, x] } else { [x, y] })
@@ -247,14 +240,14 @@ impl<'a> ClosestSearch<'a> {
         auto: Strategy,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
-        front: Option<(&[NodePair], f64)>,
+        front: Option<(&[NodePair], Motion)>,
     ) {
         if stop(self.best.d) {
             return;
         }
         let strategy = search.resolve(auto);
-        if let (Strategy::Priority, Some((front, shrink))) = (strategy, front) {
-            return self.priority(None, front, shrink, search.qsize, cutoff, stop);
+        if let (Strategy::Priority, Some((front, motion))) = (strategy, front) {
+            return self.priority(None, front, Some(motion), search.qsize, cutoff, stop);
         }
         self.stats.bv_tests += 1;
         let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
@@ -263,7 +256,7 @@ impl<'a> ClosestSearch<'a> {
                 self.depth_first(root, cutoff, stop);
             }
             Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
-            Strategy::Priority => self.priority(Some(root), &[], 0.0, search.qsize, cutoff, stop),
+            Strategy::Priority => self.priority(Some(root), &[], None, search.qsize, cutoff, stop),
         }
     }
 
@@ -377,13 +370,13 @@ impl<'a> ClosestSearch<'a> {
     /// the order is the same and half the queue operations are saved.
     ///
     /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
-    /// bounds less `shrink` still bound them: a seed that this puts beyond the cutoff is pruned at
-    /// once, the others are tested first.
+    /// bounds were computed before `motion`: a seed whose bound less the motion of its points is
+    /// still beyond the cutoff is pruned at once, the others are tested first.
     fn priority(
         &mut self,
         root: Option<NodePair>,
         seeds: &[NodePair],
-        shrink: f64,
+        motion: Option<Motion>,
         qsize: usize,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
@@ -398,13 +391,19 @@ impl<'a> ClosestSearch<'a> {
             for (i, seed) in seeds.iter().enumerate() {
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
-                let old = seed.bound - shrink;
-                if old >= cut {
-                    self.pruned(&NodePair {
-                        bound: old,
-                        ..*seed
-                    });
-                    continue;
+                if let Some(m) = &motion {
+                    // The whole model's motion first (free), then the node's own.
+                    let mut old = seed.bound - m.whole();
+                    if old < cut && seed.bound >= cut {
+                        old = seed.bound - m.of_node(self.b2, b);
+                    }
+                    if old >= cut {
+                        self.pruned(&NodePair {
+                            bound: old,
+                            ..*seed
+                        });
+                        continue;
+                    }
                 }
                 self.stats.bv_tests += 1;
                 let p = NodePair {
