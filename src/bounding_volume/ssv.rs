@@ -230,8 +230,11 @@ impl Ssv {
         let fixed_scale = b.scale() + rel.trans.x.abs() + rel.trans.y.abs() + rel.trans.z.abs();
         a.map(|a| {
             let slack = BOUND_SLACK * (fixed_scale + a.scale());
-            Ssv::bound_from(a.radius + moved.radius, slack, cutoff, |core_cutoff| {
-                Ssv::cores_distance_here(a, &moved, 0.0, core_cutoff)
+            // Cores within both radii make the bound 0 however close they are: the first pair of
+            // points found that near settles it.
+            let radii = a.radius + moved.radius;
+            Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
+                Ssv::cores_distance_here(a, &moved, radii + slack, core_cutoff)
             })
         })
     }
@@ -293,8 +296,9 @@ impl DistanceVolume for Ssv {
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
         let slack = Ssv::slack(a, b, rel);
-        Ssv::bound_from(a.radius + b.radius, slack, cutoff, |core_cutoff| {
-            Ssv::cores_distance(a, b, rel, 0.0, core_cutoff)
+        let radii = a.radius + b.radius;
+        Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
+            Ssv::cores_distance(a, b, rel, radii + slack, core_cutoff)
         })
     }
 }

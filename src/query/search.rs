@@ -388,6 +388,7 @@ impl<'a> ClosestSearch<'a> {
             let mut heap = q.take();
             heap.clear();
             let mut next = root;
+            let mut seq = 0u32;
             for (i, seed) in seeds.iter().enumerate() {
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
@@ -414,7 +415,8 @@ impl<'a> ClosestSearch<'a> {
                 if p.bound >= cut {
                     self.pruned(&p);
                 } else if heap.len() < qsize {
-                    heap.push(ByBound::new(p));
+                    seq = seq.wrapping_add(1);
+                    heap.push(ByBound::new(p, seq));
                 } else if self.depth_first(p, cutoff, stop) {
                     // Stopped: the other seeds are left unvisited, with 0 as their bound.
                     for s in &seeds[i + 1..] {
@@ -451,7 +453,8 @@ impl<'a> ClosestSearch<'a> {
                     } else if go_on {
                         next = Some(c);
                     } else if heap.len() < qsize {
-                        heap.push(ByBound::new(c));
+                        seq = seq.wrapping_add(1);
+                        heap.push(ByBound::new(c, seq));
                     } else if self.depth_first(c, cutoff, stop) {
                         if c.a == far.a && c.b == far.b {
                             // The nearer child is left unvisited too.
@@ -552,16 +555,20 @@ pub(crate) fn expand(
 #[derive(Clone, Copy, PartialEq, Eq)]
 struct ByBound {
     key: u64,
+    /// The order of pushing: among equal bounds the latest pushed comes first (depth-first
+    /// among ties, which reaches a touching pair soonest where many bounds are 0).
+    seq: u32,
     a: NodeRef,
     b: NodeRef,
 }
 
 impl ByBound {
     #[inline(always)]
-    fn new(p: NodePair) -> Self {
+    fn new(p: NodePair, seq: u32) -> Self {
         debug_assert!(p.bound >= 0.0);
         ByBound {
             key: (p.bound + 0.0).to_bits(),
+            seq,
             a: p.a,
             b: p.b,
         }
@@ -585,6 +592,6 @@ impl PartialOrd for ByBound {
 impl Ord for ByBound {
     #[inline(always)]
     fn cmp(&self, other: &Self) -> Ordering {
-        other.key.cmp(&self.key)
+        other.key.cmp(&self.key).then(self.seq.cmp(&other.seq))
     }
 }
