@@ -183,11 +183,26 @@ impl Bvh {
     pub fn anchor(&self, r: NodeRef) -> (Vec3, f64) {
         if r >= 0 {
             let n = &self.nodes[r as usize];
-            // The rectangle's corner: every point is within its diagonal plus the radius.
-            (n.ssv_origin, n.ssv_size)
+            // The rectangle's centre: every point is within half its diagonal plus the radius,
+            // half the size. Rounded up a little: the centre is computed.
+            let l = n.ssv_lengths;
+            let c = n.ssv_origin + n.axes[0] * (0.5 * l[0]) + n.axes[1] * (0.5 * l[1]);
+            (
+                c,
+                0.5 * n.ssv_size * (1.0 + 1e-12) + 4.0 * f64::EPSILON * c.norm(),
+            )
         } else {
+            // The centroid, and its farthest vertex.
             let [a, b, c] = self.tri(leaf_triangle(r));
-            (a, (b - a).norm().max((c - a).norm()))
+            let m = (a + b + c) / 3.0;
+            let far2 = (a - m)
+                .norm_squared()
+                .max((b - m).norm_squared())
+                .max((c - m).norm_squared());
+            (
+                m,
+                far2.sqrt() * (1.0 + 1e-12) + 4.0 * f64::EPSILON * m.norm(),
+            )
         }
     }
 
