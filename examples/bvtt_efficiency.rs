@@ -18,7 +18,7 @@ mod workloads;
 
 use pqp::diagnostics::minimal_bvtt;
 use pqp::{distance_into, DistanceOptions, DistanceResult, Model, Search};
-use workloads::{median, spheres_poses, uv_sphere};
+use workloads::{median, read_path, read_tris, spheres_poses, uv_sphere};
 
 fn main() {
     let mut per_gap = 100;
@@ -125,4 +125,65 @@ fn main() {
         total[4] / n
     );
     println!("sum d = {sum_d:.12} (compare with pqp_bench's workload-1 checksum)");
+    coherent(search);
+}
+
+/// Workload 5 (the tumbling tori of /work/shared/models, every frame in order): the same ratio for
+/// a query that reuses its result, so that under coherent motion it starts from the last query's
+/// BVTT front (and its bounds), against one that searches from the root every frame.
+fn coherent(search: Search) {
+    let dir = std::path::Path::new("/work/shared/models");
+    let files = ["torus1.tris", "torus2.tris", "torus1.path", "torus2.path"].map(|f| dir.join(f));
+    if !files.iter().all(|f| f.exists()) {
+        println!(
+            "\n(workload 5 skipped: the tumbling tori are not in {})",
+            dir.display()
+        );
+        return;
+    }
+    let t1 = Model::from_triangles(read_tris(&files[0]).expect("torus1")).expect("builds");
+    let t2 = Model::from_triangles(read_tris(&files[1]).expect("torus2")).expect("builds");
+    let (p1, p2) = (
+        read_path(&files[2]).expect("path"),
+        read_path(&files[3]).expect("path"),
+    );
+    let opts = DistanceOptions {
+        search,
+        ..DistanceOptions::exact()
+    };
+    println!("\nworkload 5: tumbling tori, {} frames in order", p1.len());
+    println!(
+        "| result | BV tests/q | minimal BVTT nodes/q | efficiency (BV tests / minimal nodes) | \
+         tri tests/q | sum d |"
+    );
+    println!("|---|---:|---:|---:|---:|---|");
+    for reused in [true, false] {
+        let mut result = DistanceResult::new();
+        let (mut bv, mut nodes, mut tri, mut sum_d) = (0.0, 0.0, 0.0, 0.0);
+        for (a, b) in p1.iter().zip(&p2) {
+            if !reused {
+                result = DistanceResult::new();
+            }
+            distance_into(&mut result, &t1, a, &t2, b, &opts).expect("query runs");
+            let m = minimal_bvtt(&t1, a, &t2, b, result.distance).expect("walk runs");
+            bv += result.stats.bv_tests as f64;
+            tri += result.stats.tri_tests as f64;
+            nodes += m.nodes_below as f64;
+            sum_d += result.distance;
+        }
+        let n = p1.len() as f64;
+        println!(
+            "| {} | {:.0} | {:.0} | {:.3} | {:.1} | {:.12} |",
+            if reused {
+                "reused (front tracking)"
+            } else {
+                "fresh each frame"
+            },
+            bv / n,
+            nodes / n,
+            bv / nodes,
+            tri / n,
+            sum_d
+        );
+    }
 }
