@@ -178,16 +178,21 @@ mod tests {
     use super::*;
     use nalgebra::{Rotation3, Unit};
 
-    /// Every vertex below a node lies within the node's anchor distance of its anchor.
-    #[test]
-    fn anchors_reach_every_vertex_below() {
-        let mut state = 3u64;
-        let mut f = move || {
+    /// A seeded source of uniform doubles in [-1, 1).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
             state = state
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        }
+    }
+
+    /// Every vertex below a node lies within the node's anchor distance of its anchor.
+    #[test]
+    fn anchors_reach_every_vertex_below() {
+        let mut f = uniform(3);
         for (scale, offset) in [(1.0, 0.0), (1e-3, 1e3), (1e4, -5.0)] {
             let mut tris = Vec::new();
             for i in 0..300 {
@@ -225,13 +230,7 @@ mod tests {
     /// The motion bound holds for every point near the anchor, for small and large motions.
     #[test]
     fn motion_bounds_every_point_near_the_anchor() {
-        let mut state = 7u64;
-        let mut f = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut f = uniform(7);
         let mut tight = 0;
         for k in 0..2000 {
             let rot = |f: &mut dyn FnMut() -> f64, angle: f64| -> Mat3 {

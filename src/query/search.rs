@@ -232,8 +232,8 @@ impl<'a> ClosestSearch<'a> {
 
     /// As [`run`](ClosestSearch::run), starting from the BVTT nodes of `front` (a cut of the BVTT:
     /// every triangle pair lies below one of them) instead of the root, when given and the search
-    /// is priority-directed; other strategies start from the root. A front node's bound less the
-    /// front's `shrink` is a lower bound on the distance of the triangles below it now.
+    /// is priority-directed; other strategies start from the root. A front node's bound held before
+    /// the `motion`; less the motion of the node's points, it bounds the triangles below it now.
     pub fn run_from(
         &mut self,
         search: &Search,
@@ -512,40 +512,19 @@ pub(crate) fn expand(
     };
     let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
     // The fixed side is posed once, in the frame of the side being split.
+    let pair = |a, b, bound| NodePair { a, b, bound };
     Some(if split_first {
         let fixed = leaves.second.get(b, ssv2);
         let [c0, c1] = b1.nodes[a as usize].children;
         let (v0, v1) = (leaves.first.get(c0, ssv1), leaves.first.get(c1, ssv1));
         let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, cutoff);
-        [
-            NodePair {
-                a: c0,
-                b,
-                bound: d0,
-            },
-            NodePair {
-                a: c1,
-                b,
-                bound: d1,
-            },
-        ]
+        [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
         let fixed = leaves.first.get(a, ssv1);
         let [c0, c1] = b2.nodes[b as usize].children;
         let (v0, v1) = (leaves.second.get(c0, ssv2), leaves.second.get(c1, ssv2));
         let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, cutoff);
-        [
-            NodePair {
-                a,
-                b: c0,
-                bound: d0,
-            },
-            NodePair {
-                a,
-                b: c1,
-                bound: d1,
-            },
-        ]
+        [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
 
