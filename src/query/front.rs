@@ -31,7 +31,7 @@ pub(crate) struct Motion {
     dr: Mat3,
     dt: Vec3,
     /// At least the spectral norm of `ΔR`.
-    fro: f64,
+    dr_norm: f64,
     /// The bound for every point of model 2.
     whole: f64,
     /// The magnitude the rounding of the motion is relative to.
@@ -43,7 +43,7 @@ impl Motion {
     /// `|ΔR o + Δt| + ‖ΔR‖ e`, rounded up generously.
     #[inline]
     fn bound(&self, o: &Vec3, e: f64) -> f64 {
-        let m = (self.dr * o + self.dt).norm() + self.fro * e;
+        let m = (self.dr * o + self.dt).norm() + self.dr_norm * e;
         m * (1.0 + 1e-9) + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
     }
 
@@ -128,7 +128,7 @@ impl Front {
         let motion = Motion {
             dr,
             dt,
-            fro: spectral_bound(&dr),
+            dr_norm: spectral_bound(&dr),
             whole: 0.0,
             slack_scale,
         };
@@ -248,7 +248,7 @@ mod tests {
             let m = Motion {
                 dr: r1 - r0,
                 dt: t1 - t0,
-                fro: spectral_bound(&(r1 - r0)),
+                dr_norm: spectral_bound(&(r1 - r0)),
                 whole: f64::INFINITY,
                 slack_scale: t0.norm() + t1.norm(),
             };
