@@ -197,7 +197,6 @@ mod tests {
                 distance_into(&mut r, &a, &p1, &b, &p2, &opts).unwrap();
                 assert_eq!(r.distance, d);
                 let m = minimal_bvtt(&a, &p1, &b, &p2, d).unwrap();
-
                 assert!(m.nodes_below >= 1);
                 assert_eq!(r.stats.bv_tests, m.bound_tests, "qsize {qsize}");
                 // The cached pair is tested once before the search starts.

@@ -295,11 +295,7 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        let slack = Ssv::slack(a, b, rel);
-        let radii = a.radius + b.radius;
-        Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
-            Ssv::cores_distance(a, b, rel, radii + slack, core_cutoff)
-        })
+        Ssv::bounds_against([a], b, rel, false, cutoff)[0]
     }
 }
 

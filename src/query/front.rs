@@ -114,16 +114,20 @@ impl Front {
         search: &Search,
     ) -> Option<(&[NodePair], Motion)> {
         let prev = self.rel.as_ref()?;
-        let scale = b1.root_size() + b2.root_size();
-        let dr = rel.rot - prev.rot;
-        let dt = rel.trans - prev.trans;
-        let usable = search.triangle_cache
+        let same = search.triangle_cache
             && search.resolve(Strategy::Priority) == Strategy::Priority
             && self.uid1 == m1.uid()
             && self.uid2 == m2.uid()
-            && !self.nodes.is_empty()
-            && dr.amax() <= Self::MOTION
-            && dt.amax() <= Self::MOTION * scale;
+            && !self.nodes.is_empty();
+        if !same {
+            return None;
+        }
+        let dr = rel.rot - prev.rot;
+        let dt = rel.trans - prev.trans;
+        let scale = b1.root_size() + b2.root_size();
+        if dr.amax() > Self::MOTION || dt.amax() > Self::MOTION * scale {
+            return None;
+        }
         let slack_scale = rel.trans.norm() + prev.trans.norm();
         let motion = Motion {
             dr,
@@ -133,7 +137,7 @@ impl Front {
             slack_scale,
         };
         let whole = motion.bound(&Vec3::zeros(), b2.reach());
-        usable.then_some((&self.nodes[..], Motion { whole, ..motion }))
+        Some((&self.nodes[..], Motion { whole, ..motion }))
     }
 
     /// Keeps the front `new` of a query at `rel` (`None`: none was recorded); `from_front`: whether
