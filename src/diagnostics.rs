@@ -73,11 +73,11 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
             continue;
         }
         out.nodes_below += 1;
-        match expand(b1, b2, rel, p.a, p.b, f64::INFINITY, &mut leaves) {
+        match expand(b1, b2, rel, &p, f64::INFINITY, false, &mut leaves) {
             None => out.leaf_pairs_below += 1,
             Some(children) => {
                 out.bound_tests += 2;
-                stack.extend(children);
+                stack.extend(children.map(|c| c.0));
             }
         }
     }

@@ -294,7 +294,8 @@ fn triangle_cache_gives_same_answers_with_less_work() {
 
 /// A result reused along a coherent motion starts each query from the BVTT front of the last one:
 /// the answers must be those of a fresh query (and of brute force), touching and overlapping
-/// frames included, for every search that keeps a front, and the work must drop.
+/// frames included, for every search that keeps a front, and the work must drop (most of the
+/// front's pairs pruned by their separating axes).
 #[test]
 fn front_tracking_gives_same_answers_along_coherent_motion() {
     let a = Mesh::torus(1.0, 0.3, 24, 12);
@@ -342,8 +343,10 @@ fn front_tracking_gives_same_answers_along_coherent_motion() {
             cold_tests += cold.stats.bv_tests;
         }
         assert!(touching > 5 && touching < 100, "{touching}");
+        // Measured: 0.26, 0.14 and 0.17 of the cold work; 0.36 for the default search when front
+        // pairs are decayed by their points' whole displacement rather than along their axes.
         assert!(
-            (warm_tests as f64) < 0.8 * cold_tests as f64,
+            (warm_tests as f64) < 0.3 * cold_tests as f64,
             "{warm_tests} vs {cold_tests} ({search:?})"
         );
     }

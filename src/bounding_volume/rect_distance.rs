@@ -20,7 +20,8 @@
 
 use crate::math::{Mat3, Vec3};
 
-/// Distance between two rectangles (or less, see `cutoff` and `enough` below).
+/// Distance between two rectangles (or less, see `cutoff` and `enough` below), with a separating
+/// axis that shows it.
 ///
 /// Rectangle A is `[0, la[0]] x [0, la[1]] x {0}` in its own frame. Rectangle B is
 /// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
@@ -34,6 +35,13 @@ use crate::math::{Mat3, Vec3};
 /// - `enough`: the search may stop at the first candidate pair at most `enough` apart and return
 ///   its distance (an upper bound of the true one, itself at most `enough`): an overlap test needs
 ///   no more. 0: exact.
+///
+/// The axis `n` (in A's frame, pointing from A towards B; not normalized) is one along which the
+/// rectangles' projections are at least the returned value apart (the vector between closest
+/// points at a corner, or between the boxes that gave a gap), so that someone who moves B can
+/// bound the new distance from how far B's points move along `n`. It is zero when none is given:
+/// `enough` stopped the search, or the edges decided (their answer is either below `cutoff`,
+/// which a search does not prune, or `cutoff` itself, which no axis shows).
 #[inline(always)]
 pub(crate) fn rect_distance(
     r: &Mat3,
@@ -42,7 +50,7 @@ pub(crate) fn rect_distance(
     lb: [f64; 2],
     enough: f64,
     cutoff: f64,
-) -> f64 {
+) -> (f64, Vec3) {
     let enough2 = enough * enough;
     // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
     let u: Vec3 = r.column(0) * lb[0];
@@ -50,8 +58,9 @@ pub(crate) fn rect_distance(
     let qb = [*t, t + u, t + v, t + u + v];
     let cut2 = cutoff * cutoff;
     let gap_b = box_gap(&qb, la);
-    if gap_b >= cut2 {
-        return gap_b.sqrt();
+    let gap_b2 = gap_b.norm_squared();
+    if gap_b2 >= cut2 {
+        return (gap_b2.sqrt(), gap_b);
     }
     let rb = [
         offset(&qb[0], la),
@@ -66,8 +75,11 @@ pub(crate) fn rect_distance(
     // rectangles. That settles every pair whose nearest points include a corner (a touching corner
     // too: its offset is zero). The certificate is global, so b's nearest corner is tried before a
     // is even placed in b's frame.
-    if db <= enough2 || leads_away(&rb[ib], ib, &u, &v) {
-        return db.sqrt();
+    // Both tests evaluated, one branch: it goes either way unpredictably.
+    if (db <= enough2) | leads_away(&rb[ib], ib, &u, &v) {
+        // The offset is the axis, unless `enough` stopped the search: then the value is not a
+        // lower bound, and no axis comes (zeroed by a product: a branch costs more).
+        return (db.sqrt(), rb[ib] * beyond(db, enough2));
     }
 
     // A in B's frame (x_B = r^T (x_A - t)): A's axes there are the rows of `r`.
@@ -82,15 +94,18 @@ pub(crate) fn rect_distance(
         offset(&pa[3], lb),
     ];
     let (ia, da) = nearest(&ra);
-    if da < db && (da <= enough2 || leads_away(&ra[ia], ia, &ua, &va)) {
-        return da.sqrt();
+    // A's offsets point from B to A in B's frame: `-r o` is the axis in A's frame.
+    if (da < db) & ((da <= enough2) | leads_away(&ra[ia], ia, &ua, &va)) {
+        return (da.sqrt(), -(r * ra[ia]) * beyond(da, enough2));
     }
     let gap_a = box_gap(&pa, lb);
-    if gap_a >= cut2 {
-        return gap_a.sqrt();
+    let gap_a2 = gap_a.norm_squared();
+    if gap_a2 >= cut2 {
+        return (gap_a2.sqrt(), -(r * gap_a));
     }
     // Below the cutoff the answer is exact; at or above it, any value in [cutoff, distance] will
-    // do, so the edges need only beat the cutoff.
+    // do, so the edges need only beat the cutoff. No axis comes from here: an exact answer below
+    // the cutoff is not pruned, and the cutoff itself has no axis to show it.
     let mut best = least(least(db, da), cut2);
 
     // The edges of b against a, then those of a against b.
@@ -102,23 +117,30 @@ pub(crate) fn rect_distance(
     best = edge_min(&pa[2], &ua, &ra[2], &ra[3], lb, best);
     best = edge_min(&pa[0], &va, &ra[0], &ra[2], lb, best);
     best = edge_min(&pa[1], &va, &ra[1], &ra[3], lb, best);
-    best.sqrt()
+    (best.sqrt(), Vec3::zeros())
 }
 
-/// Squared distance between the box around four points and the rectangle `[0, l[0]] x [0, l[1]] x
-/// {0}`: a lower bound on the squared distance between anything spanned by the points and the
-/// rectangle.
+/// The gap between the rectangle `[0, l[0]] x [0, l[1]] x {0}` and the box around four points, as
+/// the vector from the one to the other (zero where they overlap): its length is a lower bound on
+/// the distance between anything spanned by the points and the rectangle, and it is an axis along
+/// which they are that far apart.
 #[inline(always)]
-fn box_gap(q: &[Vec3; 4], l: [f64; 2]) -> f64 {
-    // Per coordinate: how far the points' span lies beyond [lo_k, hi_k] (plain comparisons: the
-    // generic componentwise min/max cost several times as much here).
+fn box_gap(q: &[Vec3; 4], l: [f64; 2]) -> Vec3 {
+    // Per coordinate: how far the points' span lies beyond [lo_k, hi_k], signed by the side
+    // (at most one of the two differences is positive; plain comparisons: the generic
+    // componentwise min/max cost several times as much here).
     let gap = |k: usize, lo_k: f64, hi_k: f64| {
         let lo = least(least(q[0][k], q[1][k]), least(q[2][k], q[3][k]));
         let hi = most(most(q[0][k], q[1][k]), most(q[2][k], q[3][k]));
-        most(most(lo - hi_k, lo_k - hi), 0.0)
+        most(lo - hi_k, 0.0) - most(lo_k - hi, 0.0)
     };
-    let (gx, gy, gz) = (gap(0, 0.0, l[0]), gap(1, 0.0, l[1]), gap(2, 0.0, 0.0));
-    gx * gx + gy * gy + gz * gz
+    Vec3::new(gap(0, 0.0, l[0]), gap(1, 0.0, l[1]), gap(2, 0.0, 0.0))
+}
+
+/// 1 when `x > y`, else 0.
+#[inline(always)]
+fn beyond(x: f64, y: f64) -> f64 {
+    f64::from(u8::from(x > y))
 }
 
 /// The smaller of two numbers (no NaN reaches here; cheaper than `f64::min`).
@@ -177,7 +199,7 @@ fn leads_away(o: &Vec3, i: usize, u: &Vec3, v: &Vec3) -> bool {
     let (su, sv) = (o.dot(u), o.dot(v));
     let along_u = if i & 1 == 0 { su >= 0.0 } else { su <= 0.0 };
     let along_v = if i & 2 == 0 { sv >= 0.0 } else { sv <= 0.0 };
-    along_u && along_v
+    along_u & along_v
 }
 
 /// The least of `best` and the squared distance from the interior of the edge `p + s d` (`s` in
@@ -267,9 +289,9 @@ mod tests {
             let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.f().abs() };
             let la = [side(&mut rng, k % 7 == 0), side(&mut rng, k % 5 == 0)];
             let lb = [side(&mut rng, k % 11 == 0), side(&mut rng, k % 4 == 0)];
-            let exact = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
+            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
             let cutoff = exact * (0.5 + rng.f().abs());
-            let got = rect_distance(&r, &t, la, lb, 0.0, cutoff);
+            let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff);
             if exact < cutoff {
                 below += 1;
                 assert_eq!(got, exact, "case {k}");
@@ -282,5 +304,41 @@ mod tests {
             }
         }
         assert!(below > 5000 && above > 5000, "{below} {above}");
+    }
+
+    /// When an axis comes with the answer, the rectangles' projections on it are at least that far
+    /// apart (a rectangle's projection spans its corners'), with or without a cutoff.
+    #[test]
+    fn axis_separates_by_the_answer() {
+        let mut rng = Rng(29);
+        let (mut given, mut none) = (0, 0);
+        for k in 0..20000 {
+            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
+            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
+            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
+            let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
+            let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
+            let cutoff = [f64::INFINITY, 0.5 * exact, exact * 1.5][k % 3];
+            let (got, n) = rect_distance(&r, &t, la, lb, 0.0, cutoff);
+            if n == Vec3::zeros() {
+                none += 1;
+                continue;
+            }
+            given += 1;
+            let n = n.normalize();
+            let a = [0.0, la[0]].map(|x| [0.0, la[1]].map(|y| n.dot(&Vec3::new(x, y, 0.0))));
+            let b = [0.0, lb[0]]
+                .map(|x| [0.0, lb[1]].map(|y| n.dot(&(t + r.column(0) * x + r.column(1) * y))));
+            let a_hi = a.as_flattened().iter().fold(f64::MIN, |m, &v| m.max(v));
+            let b_lo = b.as_flattened().iter().fold(f64::MAX, |m, &v| m.min(v));
+            assert!(
+                b_lo - a_hi >= got - 1e-12,
+                "case {k}: gap {} < {got}",
+                b_lo - a_hi
+            );
+        }
+        // Most answers come with an axis (only the edge searches give none).
+        assert!(given > 3 * none, "{given} {none}");
     }
 }

@@ -155,22 +155,27 @@ impl Ssv {
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
     fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
-        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff)
+        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff).0
     }
 
-    /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame. Not inlined:
-    /// one copy of the kernel serves every caller (measured faster than inlined copies).
+    /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame, with an axis
+    /// along which the cores are at least the returned value apart (see `rect_distance`), in the
+    /// frame of `a`'s axes; zero when there is none (and for pairs with a point or two segments,
+    /// which the default volumes never meet). Not inlined: one copy of the kernel serves every
+    /// caller (measured faster than inlined copies).
     #[inline(never)]
-    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64) -> f64 {
+    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64) -> (f64, Vec3) {
         use SsvKind::{Line, Point, Rect};
+        let none = Vec3::zeros();
         match (a.kind(), b.kind()) {
-            (Point, Point) => (a.origin - b.origin).norm(),
-            (Point, _) => b.core_distance(&a.origin),
-            (_, Point) => a.core_distance(&b.origin),
+            (Point, Point) => ((a.origin - b.origin).norm(), none),
+            (Point, _) => (b.core_distance(&a.origin), none),
+            (_, Point) => (a.core_distance(&b.origin), none),
             (Line, Line) => {
                 let p1 = a.origin + a.axes.column(0) * a.lengths[0];
                 let q1 = b.origin + b.axes.column(0) * b.lengths[0];
-                segment_segment(&a.origin, &p1, &b.origin, &q1).distance
+                let d = segment_segment(&a.origin, &p1, &b.origin, &q1).distance;
+                (d, none)
             }
             (Line | Rect, Line | Rect) => {
                 // b's core in the frame of a's core: axes A^T B, corner A^T (ob - oa).
@@ -214,29 +219,46 @@ impl Ssv {
     /// The bounds of several volumes `a` against one volume `b` posed by `rel` in their frame, as
     /// [`distance_below`](DistanceVolume::distance_below) gives them, sharing the work of posing
     /// `b`. `inverse`: `rel` poses the `a`s in `b`'s frame instead.
+    ///
+    /// With `axes`, each bound comes with a separating axis (zero without): a direction, in the frame `rel` maps into, from the volume that lives there towards the one
+    /// `rel` poses (from `a` to `b`, or from `b` to `a` when `inverse`), along which the two are at
+    /// least the bound apart; not normalized, and zero when there is none to give. Front tracking
+    /// bounds how much the bound can shrink from how far the points move along it.
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
         a: [&Ssv; N],
         b: &Ssv,
         rel: &RelPose,
         inverse: bool,
+        axes: bool,
         cutoff: f64,
-    ) -> [f64; N] {
+    ) -> [(f64, Vec3); N] {
         let moved = if inverse {
             b.posed_inverse(rel)
         } else {
             b.posed(rel)
         };
         let fixed_scale = b.scale() + rel.trans.x.abs() + rel.trans.y.abs() + rel.trans.z.abs();
-        a.map(|a| {
+        // A plain loop: `array::map` with this body is not inlined, and costs 8% of a query.
+        let mut out = [(0.0, Vec3::zeros()); N];
+        for (out, a) in out.iter_mut().zip(a) {
             let slack = BOUND_SLACK * (fixed_scale + a.scale());
             // Cores within both radii make the bound 0 however close they are: the first pair of
             // points found that near settles it.
             let radii = a.radius + moved.radius;
-            Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
+            let (bound, axis) = Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
                 Ssv::cores_distance_here(a, &moved, radii + slack, core_cutoff)
-            })
-        })
+            });
+            // From the frame of a's axes into a's model frame, then (inverse) into b's, turned to
+            // point from b to a. (For every bound: a branch on the cutoff costs more.)
+            *out = if axes {
+                let axis = a.axes * axis;
+                (bound, if inverse { -(rel.rot * axis) } else { axis })
+            } else {
+                (bound, Vec3::zeros())
+            };
+        }
+        out
     }
 }
 
@@ -295,26 +317,33 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        Ssv::bounds_against([a], b, rel, false, cutoff)[0]
+        Ssv::bounds_against([a], b, rel, false, false, cutoff)[0].0
     }
 }
 
 impl Ssv {
     /// The bound from the core distance that `core(core_cutoff)` computes (exact below
-    /// `core_cutoff`, at least it otherwise), for volumes whose radii sum to `radii`.
+    /// `core_cutoff`, at least it otherwise), for volumes whose radii sum to `radii`, with the
+    /// cores' separating axis when the volumes are apart along it (zero otherwise).
     #[inline(always)]
-    fn bound_from(radii: f64, slack: f64, cutoff: f64, core: impl FnOnce(f64) -> f64) -> f64 {
+    fn bound_from(
+        radii: f64,
+        slack: f64,
+        cutoff: f64,
+        core: impl FnOnce(f64) -> (f64, Vec3),
+    ) -> (f64, Vec3) {
         // Err low by the rounding of the composition, so the bound never exceeds the true distance.
         // The core distance that makes the bound reach the cutoff, with a second slack so that a
         // core distance at or above it proves the bound's true value is at least the cutoff.
         let core_cutoff = cutoff + radii + 2.0 * slack;
-        let d = core(core_cutoff);
-        let bound = (d - radii - slack).max(0.0);
-        if d >= core_cutoff {
-            bound.max(cutoff)
-        } else {
-            bound
-        }
+        let (d, axis) = core(core_cutoff);
+        let raw = d - radii - slack;
+        // At or above the core cutoff the bound is at least the cutoff (up to rounding): a select
+        // of the floor rather than a branch.
+        let bound = raw.max(if d >= core_cutoff { cutoff } else { 0.0 });
+        // A bound raised to 0 is not a separation: the volumes may overlap along the axis (a
+        // product, not a branch: this is taken about half the time, unpredictably).
+        (bound, axis * f64::from(u8::from(raw > 0.0)))
     }
 
     /// The rectangle swept sphere around one triangle, radius 0 up to rounding: the rectangle on its
@@ -426,4 +455,74 @@ pub(super) fn ball_centre(n: usize, at: impl Fn(usize) -> Vec3) -> (Vec3, f64) {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Rotation3, Unit};
+
+    /// How far `b` lies beyond `a` along the unit axis `n`: the gap between their projections (a
+    /// rectangle's spans its corners', widened by the radius), negative if they overlap or `b`
+    /// lies behind.
+    fn gap_along(a: &Ssv, b: &Ssv, n: &Vec3) -> f64 {
+        let span = |v: &Ssv| {
+            let p =
+                |x: f64, y: f64| n.dot(&(v.origin + v.axes.column(0) * x + v.axes.column(1) * y));
+            let c = [p(0.0, 0.0), p(v.lengths[0], 0.0), p(0.0, v.lengths[1])];
+            let c3 = p(v.lengths[0], v.lengths[1]);
+            let lo = c.iter().fold(c3, |m, &x| m.min(x));
+            let hi = c.iter().fold(c3, |m, &x| m.max(x));
+            (lo - v.radius, hi + v.radius)
+        };
+        let ((_, ahi), (blo, _)) = (span(a), span(b));
+        blo - ahi
+    }
+
+    /// The axes that come with bounds point from the volume in the frame `rel` maps into towards
+    /// the posed one, in that frame, and show the bound, whichever side is posed.
+    #[test]
+    fn bound_axes_separate_by_the_bound() {
+        let mut state = 5u64;
+        let mut f = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut given, mut cases) = (0, 0);
+        for k in 0..4000 {
+            let mut rot = || -> Mat3 {
+                let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
+                Rotation3::from_axis_angle(&axis, 3.0 * f()).into_inner()
+            };
+            let (ra, rb, rr) = (rot(), rot(), rot());
+            let mut ssv = |axes: Mat3| Ssv {
+                axes,
+                origin: Vec3::new(f(), f(), f()),
+                lengths: [f().abs(), f().abs()],
+                radius: 0.1 * f().abs(),
+            };
+            let (a, b) = (ssv(ra), ssv(rb));
+            let rel = RelPose {
+                rot: rr,
+                trans: Vec3::new(f(), f(), f()) * 3.0,
+            };
+            let cutoff = [f64::INFINITY, 0.3, 1.0][k % 3];
+            // b posed by rel against a, then a posed by rel's inverse against b.
+            let [(bound, axis)] = Ssv::bounds_against([&a], &b, &rel, false, true, cutoff);
+            let [(bound_inv, axis_inv)] = Ssv::bounds_against([&b], &a, &rel, true, true, cutoff);
+            for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
+                cases += 1;
+                if axis == Vec3::zeros() {
+                    continue;
+                }
+                given += 1;
+                // In the frame rel maps into (a's), from a towards b posed by rel.
+                let gap = gap_along(&a, &b.posed(&rel), &axis.normalize());
+                assert!(gap >= bound - 1e-12, "case {k}: gap {gap} < bound {bound}");
+            }
+        }
+        assert!(given > cases / 2, "{given} of {cases}");
+    }
 }

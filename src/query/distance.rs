@@ -150,7 +150,12 @@ pub fn distance_into(
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
     let mut leaves = LeafVolumes::default();
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
-    search.record_front(result.front.take_spare());
+    if result
+        .front
+        .worth_recording(m1, m2, b1, b2, &rel, &options.search)
+    {
+        search.record_front(result.front.take_spare());
+    }
     let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d

@@ -12,6 +12,13 @@
 //! distance below the node shrinks by more than that. The old bound less that is still a lower
 //! bound, and a node it keeps beyond the search's cutoff is pruned without a test.
 //!
+//! Most front nodes also keep a separating axis: a unit direction `n` along which the node's
+//! model 1 volume and model 2 volume were at least the bound apart (the vector between closest
+//! points, or the gap between the boxes that pruned the pair). Their gap along `n` shrinks only by
+//! how far model 2's points move against `n`, at most `-n . (ΔR o + Δt) + |ΔR^T n| e`: under a
+//! tumbling motion, mostly across `n`, far less than the whole displacement. On the tumbling tori
+//! of BENCHMARKS.md this settles most of the front pairs the displacement bound leaves to a test.
+//!
 //! The front is used only on the same two models, with the triangle cache on, for a
 //! priority-directed search, and when the relative pose moved little since the query that left it
 //! (else a front that is fine where the models were close would cost more than it saves); it is
@@ -34,8 +41,19 @@ pub(crate) struct Motion {
     dr_norm: f64,
     /// The bound for every point of model 2.
     whole: f64,
-    /// The magnitude the rounding of the motion is relative to.
+    /// The magnitude the rounding of the motion is relative to: the translations, and how far the
+    /// models' points reach (an axis's rounding moves their projections by that much times it).
     slack_scale: f64,
+}
+
+/// A node of a front, with a separating axis when one is known (see the module docs).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FrontPair {
+    /// The node and its bound.
+    pub pair: NodePair,
+    /// An axis (not normalized; in model 1's frame, from model 1's volume towards model 2's) along
+    /// which the node's volumes were at least `pair.bound` apart; zero when none is known.
+    pub axis: Vec3,
 }
 
 impl Motion {
@@ -47,11 +65,31 @@ impl Motion {
         m * (1.0 + 1e-9) + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
     }
 
-    /// How far the points below model 2's node `b` may have moved.
+    /// How much a front node's bound on the distance below model 2's node `b` may have shrunk:
+    /// along `axis` when it is not zero (see the module docs), else the most its points may have
+    /// moved.
     #[inline]
-    pub fn of_node(&self, b2: &Bvh, b: NodeRef) -> f64 {
+    pub fn of_node(&self, b2: &Bvh, b: NodeRef, axis: &Vec3) -> f64 {
         let (o, e) = b2.anchor(b);
-        self.bound(&o, e).min(self.whole)
+        let len = axis.norm();
+        let shrink = if len > 0.0 && len.is_finite() {
+            self.along(&(axis / len), &o, e)
+        } else {
+            self.bound(&o, e)
+        };
+        shrink.min(self.whole)
+    }
+
+    /// How far any point within `e` of `o` (model 2's frame) may have moved against the unit
+    /// vector `n` (model 1's frame): at most `-n . (ΔR o + Δt) + |ΔR^T n| e`, rounded up generously
+    /// (the rounding of `n` included: it tilts the projections of points as far out as the models
+    /// reach).
+    #[inline]
+    fn along(&self, n: &Vec3, o: &Vec3, e: f64) -> f64 {
+        let d = self.dr * o + self.dt;
+        let m = -n.dot(&d) + self.dr.tr_mul(n).norm() * e;
+        let size = d.abs().sum() + self.dr_norm * e;
+        m + 1e-9 * size + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
     }
 
     /// How far any point of model 2 may have moved.
@@ -79,10 +117,14 @@ pub(crate) struct Front {
     uid2: u64,
     /// The relative pose at which the front's bounds hold; `None`: no front.
     rel: Option<RelPose>,
+    /// The models and relative pose of the last query, front or not: a front is recorded only
+    /// when the next query comes near it (coherent motion), so that queries at unrelated poses
+    /// do not pay for one.
+    last: Option<(u64, u64, RelPose)>,
     /// The front nodes, each with a lower bound on the distance of the triangles below it.
-    nodes: Vec<NodePair>,
+    nodes: Vec<FrontPair>,
     /// Storage for the next front (no allocation per query once warm).
-    spare: Vec<NodePair>,
+    spare: Vec<FrontPair>,
     /// The front's size after the last search from the root.
     base: usize,
 }
@@ -96,10 +138,42 @@ impl Front {
     const MOTION: f64 = 0.1;
 
     /// Storage for the front of the next query.
-    pub fn take_spare(&mut self) -> Vec<NodePair> {
+    pub fn take_spare(&mut self) -> Vec<FrontPair> {
         let mut v = std::mem::take(&mut self.spare);
         v.clear();
         v
+    }
+
+    /// Whether the query at `rel` should record its front for the next: the last query was on the
+    /// same models, from a pose near this one, and the search is one that uses a front.
+    pub fn worth_recording(
+        &self,
+        m1: &Model,
+        m2: &Model,
+        b1: &Bvh,
+        b2: &Bvh,
+        rel: &RelPose,
+        search: &Search,
+    ) -> bool {
+        self.last.as_ref().is_some_and(|(u1, u2, prev)| {
+            Self::uses_front(search)
+                && *u1 == m1.uid()
+                && *u2 == m2.uid()
+                && Self::near(prev, rel, b1, b2)
+        })
+    }
+
+    /// Whether `search` starts from a front when it has one.
+    fn uses_front(search: &Search) -> bool {
+        search.triangle_cache && search.resolve(Strategy::Priority) == Strategy::Priority
+    }
+
+    /// Whether the relative pose moved little enough from `prev` to `rel` for a front to pay.
+    fn near(prev: &RelPose, rel: &RelPose, b1: &Bvh, b2: &Bvh) -> bool {
+        let dr = rel.rot - prev.rot;
+        let dt = rel.trans - prev.trans;
+        let scale = b1.root_size() + b2.root_size();
+        dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale
     }
 
     /// The front to start the query at `rel` from, if it suits it, with how much its bounds may
@@ -112,23 +186,18 @@ impl Front {
         b2: &Bvh,
         rel: &RelPose,
         search: &Search,
-    ) -> Option<(&[NodePair], Motion)> {
+    ) -> Option<(&[FrontPair], Motion)> {
         let prev = self.rel.as_ref()?;
-        let same = search.triangle_cache
-            && search.resolve(Strategy::Priority) == Strategy::Priority
+        let same = Self::uses_front(search)
             && self.uid1 == m1.uid()
             && self.uid2 == m2.uid()
             && !self.nodes.is_empty();
-        if !same {
+        if !same || !Self::near(prev, rel, b1, b2) {
             return None;
         }
         let dr = rel.rot - prev.rot;
         let dt = rel.trans - prev.trans;
-        let scale = b1.root_size() + b2.root_size();
-        if dr.amax() > Self::MOTION || dt.amax() > Self::MOTION * scale {
-            return None;
-        }
-        let slack_scale = rel.trans.norm() + prev.trans.norm();
+        let slack_scale = rel.trans.norm() + prev.trans.norm() + b1.reach() + b2.reach();
         let motion = Motion {
             dr,
             dt,
@@ -147,10 +216,11 @@ impl Front {
         m1: &Model,
         m2: &Model,
         rel: RelPose,
-        new: Option<Vec<NodePair>>,
+        new: Option<Vec<FrontPair>>,
         from_front: bool,
     ) {
         let same = self.uid1 == m1.uid() && self.uid2 == m2.uid();
+        self.last = Some((m1.uid(), m2.uid(), rel));
         match new {
             // The search stopped before visiting anything (the cached pair touches): the old front
             // still covers every pair, but its bounds hold at its own pose only, which is kept.
@@ -164,7 +234,9 @@ impl Front {
             }
             other => {
                 // Dropped: the next query searches from the root.
-                self.spare = other.unwrap_or_default();
+                if let Some(v) = other {
+                    self.spare = v;
+                }
                 self.nodes.clear();
                 self.rel = None;
             }
@@ -172,7 +244,7 @@ impl Front {
     }
 
     /// Whether the front `v` of a query that started from this front has grown too large to keep.
-    fn outgrown(&self, v: &[NodePair], from_front: bool) -> bool {
+    fn outgrown(&self, v: &[FrontPair], from_front: bool) -> bool {
         from_front && v.len() as f64 > Self::GROWTH * self.base as f64
     }
 }
@@ -271,5 +343,47 @@ mod tests {
         }
         // Not vacuous: the bound is often within a factor 2 of a point's actual motion.
         assert!(tight > 2000, "{tight}");
+    }
+
+    /// The motion along an axis bounds how far every point near the anchor moves against it, and
+    /// is often far less than the whole displacement.
+    #[test]
+    fn motion_along_an_axis_bounds_every_point_near_the_anchor() {
+        let mut f = uniform(11);
+        let (mut smaller, mut cases) = (0, 0);
+        for k in 0..2000 {
+            let rot = |f: &mut dyn FnMut() -> f64, angle: f64| -> Mat3 {
+                let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
+                Rotation3::from_axis_angle(&axis, angle).into_inner()
+            };
+            let scale = [1e-3, 1.0, 1e3][k % 3];
+            let r0 = rot(&mut f, 3.0);
+            let step = [1e-9, 1e-3, 0.1, 2.0][k % 4];
+            let angle = step * f();
+            let r1 = rot(&mut f, angle) * r0;
+            let t0 = Vec3::new(f(), f(), f()) * scale;
+            let t1 = t0 + Vec3::new(f(), f(), f()) * scale * step;
+            let m = Motion {
+                dr: r1 - r0,
+                dt: t1 - t0,
+                dr_norm: spectral_bound(&(r1 - r0)),
+                whole: f64::INFINITY,
+                slack_scale: t0.norm() + t1.norm(),
+            };
+            let o = Vec3::new(f(), f(), f()) * scale;
+            let e = f().abs() * scale;
+            let n = Vec3::new(f(), f(), f() + 1e-3).normalize();
+            let shrink = m.along(&n, &o, e);
+            for _ in 0..20 {
+                let dir = Vec3::new(f(), f(), f()).normalize();
+                let p = o + dir * (e * f().abs());
+                let against = -n.dot(&((r1 * p + t1) - (r0 * p + t0)));
+                assert!(against <= shrink, "case {k}: {against} > {shrink}");
+            }
+            cases += 1;
+            smaller += (shrink < 0.5 * m.bound(&o, e)) as usize;
+        }
+        // Not vacuous: against a random axis the shrink is often under half the displacement.
+        assert!(smaller > cases / 4, "{smaller} of {cases}");
     }
 }

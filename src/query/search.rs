@@ -9,7 +9,7 @@
 //! bounds the queue (see [`Search::DEFAULT_QSIZE`]) so that where the bounds cannot tell pairs apart
 //! the overflow goes depth-first instead of growing a heap of a million pairs.
 
-use super::front::Motion;
+use super::front::{FrontPair, Motion};
 use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
 use crate::bounding_volume::{DistanceVolume, Ssv};
@@ -131,10 +131,10 @@ pub(crate) struct ClosestSearch<'a> {
     /// The caller's (a few kilobytes: made in place there rather than moved with the search).
     leaves: &'a mut LeafVolumes,
     /// With `Some`, every BVTT node the search leaves behind (pruned, tested as a leaf pair, or
-    /// unvisited when it stops) is recorded here with its bound: a cut of the BVTT, the front from
-    /// which the next query under coherent motion can start (see `front.rs`). `None` also when
-    /// storage ran out.
-    front: Option<Vec<NodePair>>,
+    /// unvisited when it stops) is recorded here with its bound, and the axis that shows it when
+    /// the search has one: a cut of the BVTT, the front from which the next query under coherent
+    /// motion can start (see `front.rs`). `None` also when storage ran out.
+    front: Option<Vec<FrontPair>>,
 }
 
 /// Recently met leaves' volumes of each model (see [`LeafCache`]).
@@ -176,8 +176,9 @@ impl<'a> ClosestSearch<'a> {
         s
     }
 
-    /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance.
-    fn test_triangles(&mut self, ta: usize, tb: usize) -> f64 {
+    /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance with the
+    /// vector between its closest points (from `ta` to `tb`, in model 1's frame).
+    fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
         let t2 = self.b2.tri(tb);
         let moved: Tri = [
@@ -195,22 +196,28 @@ impl<'a> ClosestSearch<'a> {
                 tb,
             };
         }
-        c.distance
+        (c.distance, c.q - c.p)
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
-    /// their bounds (exact below `cutoff`), nearer first.
+    /// their bounds (exact below `cutoff`) and separating axes (see [`expand`]), nearer first.
     #[inline]
-    fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[NodePair; 2]> {
-        match expand(self.b1, self.b2, &self.rel, p.a, p.b, cutoff, self.leaves) {
+    fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[Child; 2]> {
+        let axes = self.front.is_some();
+        match expand(self.b1, self.b2, &self.rel, p, cutoff, axes, self.leaves) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;
-                Some(if y.bound < x.bound { [y, x] } else { [x, y] })
+                Some(if y.0.bound < x.0.bound {
+                    [y, x]
+                } else {
+                    [x, y]
+                })
             }
             None => {
-                let d = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
-                // The pair's own distance: the tightest bound the front can keep for it.
-                self.left(&NodePair { bound: d, ..*p });
+                let (d, axis) = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+                // The pair's own distance, which the closest points' axis shows: the tightest
+                // bound the front can keep for it.
+                self.left(&NodePair { bound: d, ..*p }, axis);
                 None
             }
         }
@@ -240,7 +247,7 @@ impl<'a> ClosestSearch<'a> {
         auto: Strategy,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
-        front: Option<(&[NodePair], Motion)>,
+        front: Option<(&[FrontPair], Motion)>,
     ) {
         if stop(self.best.d) {
             return;
@@ -261,37 +268,41 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).
-    pub fn record_front(&mut self, mut buffer: Vec<NodePair>) {
+    pub fn record_front(&mut self, mut buffer: Vec<FrontPair>) {
         buffer.clear();
         self.front = Some(buffer);
     }
 
     /// The front recorded, if it was asked for and storage did not run out.
-    pub fn take_front(&mut self) -> Option<Vec<NodePair>> {
+    pub fn take_front(&mut self) -> Option<Vec<FrontPair>> {
         self.front.take()
     }
 
-    /// The bound of the BVTT node `(a, b)` (exact below `cutoff`, at least `cutoff` otherwise).
-    fn pair_bound(&mut self, a: NodeRef, b: NodeRef, cutoff: f64) -> f64 {
+    /// The bound of the BVTT node `(a, b)` (exact below `cutoff`, at least `cutoff` otherwise),
+    /// with a separating axis when it reaches `cutoff` (see [`expand`]).
+    fn pair_bound(&mut self, a: NodeRef, b: NodeRef, cutoff: f64) -> Child {
         let (b1, b2) = (self.b1, self.b2);
         let va = self.leaves.first.get(a, |r| b1.ssv(r));
         let vb = self.leaves.second.get(b, |r| b2.ssv(r));
-        Ssv::bounds_against([&va], &vb, &self.rel, false, cutoff)[0]
+        let axes = self.front.is_some();
+        let [(bound, axis)] = Ssv::bounds_against([&va], &vb, &self.rel, false, axes, cutoff);
+        (NodePair { a, b, bound }, axis)
     }
 
     /// Notes a pruned node; its bound, like every bound, is a lower bound on what lies below it.
+    /// `axis`: one along which the node's volumes are at least that far apart (zero: none known).
     #[inline]
-    fn pruned(&mut self, p: &NodePair) {
+    fn pruned(&mut self, p: &NodePair, axis: Vec3) {
         self.pruned_min = self.pruned_min.min(p.bound);
-        self.left(p);
+        self.left(p, axis);
     }
 
     /// Records a node the search leaves behind in the front, when it keeps one.
     #[inline]
-    fn left(&mut self, p: &NodePair) {
+    fn left(&mut self, p: &NodePair, axis: Vec3) {
         if let Some(front) = &mut self.front {
             if front.try_reserve(1).is_ok() {
-                front.push(*p);
+                front.push(FrontPair { pair: *p, axis });
             } else {
                 // Out of memory: no front this time (it only saves work).
                 self.front = None;
@@ -311,16 +322,16 @@ impl<'a> ClosestSearch<'a> {
         while let Some(p) = stack.pop() {
             let cut = cutoff(self.best.d);
             if p.bound >= cut {
-                self.pruned(&p);
+                self.pruned(&p, Vec3::zeros());
                 continue;
             }
-            if let Some([near, far]) = self.visit(&p, cut) {
+            if let Some([(near, _), (far, _)]) = self.visit(&p, cut) {
                 stack.push(far);
                 stack.push(near);
             } else if stop(self.best.d) {
                 // Left unvisited: the front still covers them.
                 while let Some(p) = stack.pop() {
-                    self.left(&p);
+                    self.left(&p, Vec3::zeros());
                 }
                 return true;
             }
@@ -345,18 +356,18 @@ impl<'a> ClosestSearch<'a> {
             while let Some(p) = queue.pop_front() {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
-                    self.pruned(&p);
+                    self.pruned(&p, Vec3::zeros());
                     continue;
                 }
                 match self.visit(&p, cut) {
-                    Some(children) => queue.extend(children),
+                    Some(children) => queue.extend(children.map(|c| c.0)),
                     None if stop(self.best.d) => break,
                     None => {}
                 }
             }
             // Pairs left behind by a stop are unvisited: their bounds still bound what they hold.
             for p in queue.drain(..) {
-                self.pruned(&p);
+                self.pruned(&p, Vec3::zeros());
             }
             q.replace(queue);
         });
@@ -370,12 +381,13 @@ impl<'a> ClosestSearch<'a> {
     /// the order is the same and half the queue operations are saved.
     ///
     /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
-    /// bounds were computed before `motion`: a seed whose bound less the motion of its points is
-    /// still beyond the cutoff is pruned at once, the others are tested first.
+    /// bounds were computed before `motion`: a seed whose bound less the motion of its points (along
+    /// its separating axis when it has one) is still beyond the cutoff is pruned at once, the
+    /// others are tested first.
     fn priority(
         &mut self,
         root: Option<NodePair>,
-        seeds: &[NodePair],
+        seeds: &[FrontPair],
         motion: Option<Motion>,
         qsize: usize,
         cutoff: impl Fn(f64) -> f64 + Copy,
@@ -389,41 +401,41 @@ impl<'a> ClosestSearch<'a> {
             heap.clear();
             let mut next = root;
             let mut seq = 0u32;
-            for (i, seed) in seeds.iter().enumerate() {
+            for (i, &FrontPair { pair: seed, axis }) in seeds.iter().enumerate() {
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
                 if let Some(m) = &motion {
-                    // The whole model's motion first (free), then the node's own.
+                    // The whole model's motion first (free), then the node's own. The axis that
+                    // showed the old bound still shows the decayed one.
                     let mut old = seed.bound - m.whole();
                     if old < cut && seed.bound >= cut {
-                        old = seed.bound - m.of_node(self.b2, b);
+                        old = seed.bound - m.of_node(self.b2, b, &axis);
                     }
                     if old >= cut {
-                        self.pruned(&NodePair {
-                            bound: old,
-                            ..*seed
-                        });
+                        self.pruned(&NodePair { bound: old, ..seed }, axis);
                         continue;
                     }
                 }
                 self.stats.bv_tests += 1;
-                let p = NodePair {
-                    a,
-                    b,
-                    bound: self.pair_bound(a, b, cut),
-                };
+                let (p, axis) = self.pair_bound(a, b, cut);
                 if p.bound >= cut {
-                    self.pruned(&p);
+                    self.pruned(&p, axis);
                 } else if heap.len() < qsize {
                     seq = seq.wrapping_add(1);
                     heap.push(ByBound::new(p, seq));
                 } else if self.depth_first(p, cutoff, stop) {
                     // Stopped: the other seeds are left unvisited, with 0 as their bound.
                     for s in &seeds[i + 1..] {
-                        self.pruned(&NodePair { bound: 0.0, ..*s });
+                        self.pruned(
+                            &NodePair {
+                                bound: 0.0,
+                                ..s.pair
+                            },
+                            Vec3::zeros(),
+                        );
                     }
                     for c in heap.drain() {
-                        self.pruned(&c.pair());
+                        self.pruned(&c.pair(), Vec3::zeros());
                     }
                     break;
                 }
@@ -432,10 +444,10 @@ impl<'a> ClosestSearch<'a> {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
                     // Every queued node has a bound at least this large: all are pruned.
-                    self.pruned(&p);
+                    self.pruned(&p, Vec3::zeros());
                     break;
                 }
-                let Some([near, far]) = self.visit(&p, cut) else {
+                let Some([(near, near_axis), (far, far_axis)]) = self.visit(&p, cut) else {
                     if stop(self.best.d) {
                         break;
                     }
@@ -446,10 +458,10 @@ impl<'a> ClosestSearch<'a> {
                 let near_next = heap
                     .peek()
                     .map_or(true, |top| top.pair().bound >= near.bound);
-                for (c, go_on) in [(far, false), (near, near_next)] {
+                for (c, axis, go_on) in [(far, far_axis, false), (near, near_axis, near_next)] {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
-                        self.pruned(&c);
+                        self.pruned(&c, axis);
                     } else if go_on {
                         next = Some(c);
                     } else if heap.len() < qsize {
@@ -458,7 +470,7 @@ impl<'a> ClosestSearch<'a> {
                     } else if self.depth_first(c, cutoff, stop) {
                         if c.a == far.a && c.b == far.b {
                             // The nearer child is left unvisited too.
-                            self.pruned(&near);
+                            self.pruned(&near, Vec3::zeros());
                         }
                         break 'search;
                     }
@@ -466,10 +478,10 @@ impl<'a> ClosestSearch<'a> {
             }
             // Left behind by a stop, or by the prune that ends the search: each is pruned.
             if let Some(p) = next {
-                self.pruned(&p);
+                self.pruned(&p, Vec3::zeros());
             }
             for c in heap.drain() {
-                self.pruned(&c.pair());
+                self.pruned(&c.pair(), Vec3::zeros());
             }
             q.replace(heap);
         });
@@ -486,20 +498,26 @@ pub(crate) fn root_pair(b1: &Bvh, b2: &Bvh, rel: &RelPose, cutoff: f64) -> NodeP
     }
 }
 
-/// The two children of the BVTT node `(a, b)` with their bounds (exact below `cutoff`, at least
-/// `cutoff` otherwise), or `None` for a pair of leaves. The descent rule: split model 1's node when
-/// model 2's is a leaf, model 2's when model 1's is, else the one with the larger volume (model 1's
-/// on a tie). Leaves' volumes (computed from their triangles) go through `leaves`.
+/// A BVTT node with its bound, and an axis along which its volumes are at least that far apart
+/// (in model 1's frame, from model 1's volume towards model 2's; not normalized), or zero.
+pub(crate) type Child = (NodePair, Vec3);
+
+/// The two children of the BVTT node `p` with their bounds (exact below `cutoff`, at least
+/// `cutoff` otherwise) and, with `axes`, their separating axes (see [`Child`]; zero without), or
+/// `None` for a pair of leaves. The descent rule: split model 1's node when model 2's is a leaf,
+/// model 2's when model 1's is, else the one with the larger volume (model 1's on a tie). Leaves'
+/// volumes (computed from their triangles) go through `leaves`.
 #[inline]
 pub(crate) fn expand(
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
-    a: NodeRef,
-    b: NodeRef,
+    p: &NodePair,
     cutoff: f64,
+    axes: bool,
     leaves: &mut LeafVolumes,
-) -> Option<[NodePair; 2]> {
+) -> Option<[Child; 2]> {
+    let (a, b) = (p.a, p.b);
     let split_first = if b < 0 {
         if a < 0 {
             return None;
@@ -512,18 +530,18 @@ pub(crate) fn expand(
     };
     let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
     // The fixed side is posed once, in the frame of the side being split.
-    let pair = |a, b, bound| NodePair { a, b, bound };
+    let pair = |a, b, (bound, axis)| (NodePair { a, b, bound }, axis);
     Some(if split_first {
         let fixed = leaves.second.get(b, ssv2);
         let [c0, c1] = b1.nodes[a as usize].children;
         let (v0, v1) = (leaves.first.get(c0, ssv1), leaves.first.get(c1, ssv1));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, cutoff);
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, axes, cutoff);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
         let fixed = leaves.first.get(a, ssv1);
         let [c0, c1] = b2.nodes[b as usize].children;
         let (v0, v1) = (leaves.second.get(c0, ssv2), leaves.second.get(c1, ssv2));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, cutoff);
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, axes, cutoff);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
