@@ -51,8 +51,8 @@ pub(crate) struct Motion {
 pub(crate) struct FrontPair {
     /// The node and its bound.
     pub pair: NodePair,
-    /// An axis (not normalized; in model 1's frame, from model 1's volume towards model 2's) along
-    /// which the node's volumes were at least `pair.bound` apart; zero when none is known.
+    /// A unit axis (in model 1's frame, from model 1's volume towards model 2's) along which the
+    /// node's volumes were at least `pair.bound` apart; zero when none is known.
     pub axis: Vec3,
 }
 
@@ -65,31 +65,37 @@ impl Motion {
         m * (1.0 + 1e-9) + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
     }
 
-    /// How much a front node's bound on the distance below model 2's node `b` may have shrunk:
-    /// along `axis` when it is not zero (see the module docs), else the most its points may have
-    /// moved.
+    /// How much a front node's bound `bound` on the distance below model 2's node `b` may have
+    /// shrunk: along the unit `axis` when it is not zero (see the module docs), else, or if that
+    /// is less, the most its points may have moved.
     #[inline]
-    pub fn of_node(&self, b2: &Bvh, b: NodeRef, axis: &Vec3) -> f64 {
+    pub fn of_node(&self, b2: &Bvh, b: NodeRef, bound: f64, axis: &Vec3) -> f64 {
         let (o, e) = b2.anchor(b);
-        let len = axis.norm();
-        let shrink = if len > 0.0 && len.is_finite() {
-            self.along(&(axis / len), &o, e)
+        let moved = self.bound(&o, e).min(self.whole);
+        if *axis != Vec3::zeros() {
+            self.along(axis, bound, &o, e).min(moved)
         } else {
-            self.bound(&o, e)
-        };
-        shrink.min(self.whole)
+            moved
+        }
     }
 
     /// How far any point within `e` of `o` (model 2's frame) may have moved against the unit
-    /// vector `n` (model 1's frame): at most `-n . (ΔR o + Δt) + |ΔR^T n| e`, rounded up generously
-    /// (the rounding of `n` included: it tilts the projections of points as far out as the models
-    /// reach).
+    /// vector `n` (model 1's frame): at most `-n . (ΔR o + Δt) + |ΔR^T n| e`, rounded up generously.
+    ///
+    /// The rounding of `n` is included. Its length and direction are those of a computed vector:
+    /// between the closest points of a pair `bound` apart, or the gap between two boxes, each a few
+    /// roundings of coordinates within the models' reach `S` off. Turned by up to about `eps S /
+    /// bound`, it shows a separation less by that times the volumes' extent (`<= 2 S`): hence the
+    /// `eps S^2 / bound` term, negligible unless the pair nearly touches.
     #[inline]
-    fn along(&self, n: &Vec3, o: &Vec3, e: f64) -> f64 {
+    fn along(&self, n: &Vec3, bound: f64, o: &Vec3, e: f64) -> f64 {
         let d = self.dr * o + self.dt;
         let m = -n.dot(&d) + self.dr.tr_mul(n).norm() * e;
         let size = d.abs().sum() + self.dr_norm * e;
-        m + 1e-9 * size + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
+        let s = self.slack_scale;
+        m + 1e-9 * size
+            + 256.0 * f64::EPSILON * (o.norm() + e + s)
+            + 4096.0 * f64::EPSILON * s * s / bound
     }
 
     /// How far any point of model 2 may have moved.
@@ -373,7 +379,7 @@ mod tests {
             let o = Vec3::new(f(), f(), f()) * scale;
             let e = f().abs() * scale;
             let n = Vec3::new(f(), f(), f() + 1e-3).normalize();
-            let shrink = m.along(&n, &o, e);
+            let shrink = m.along(&n, 1.0, &o, e);
             for _ in 0..20 {
                 let dir = Vec3::new(f(), f(), f()).normalize();
                 let p = o + dir * (e * f().abs());

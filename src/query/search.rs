@@ -177,7 +177,8 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance with the
-    /// vector between its closest points (from `ta` to `tb`, in model 1's frame).
+    /// unit vector between its closest points (from `ta` to `tb`, in model 1's frame; zero when
+    /// they touch).
     fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
         let t2 = self.b2.tri(tb);
@@ -196,7 +197,12 @@ impl<'a> ClosestSearch<'a> {
                 tb,
             };
         }
-        (c.distance, c.q - c.p)
+        let axis = if c.distance > 0.0 {
+            (c.q - c.p) / c.distance
+        } else {
+            Vec3::zeros()
+        };
+        (c.distance, axis)
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
@@ -290,7 +296,8 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Notes a pruned node; its bound, like every bound, is a lower bound on what lies below it.
-    /// `axis`: one along which the node's volumes are at least that far apart (zero: none known).
+    /// `axis`: a unit vector along which the node's volumes are at least that far apart (zero:
+    /// none known).
     #[inline]
     fn pruned(&mut self, p: &NodePair, axis: Vec3) {
         self.pruned_min = self.pruned_min.min(p.bound);
@@ -409,7 +416,7 @@ impl<'a> ClosestSearch<'a> {
                     // showed the old bound still shows the decayed one.
                     let mut old = seed.bound - m.whole();
                     if old < cut && seed.bound >= cut {
-                        old = seed.bound - m.of_node(self.b2, b, &axis);
+                        old = seed.bound - m.of_node(self.b2, b, seed.bound, &axis);
                     }
                     if old >= cut {
                         self.pruned(&NodePair { bound: old, ..seed }, axis);
@@ -419,7 +426,7 @@ impl<'a> ClosestSearch<'a> {
                 self.stats.bv_tests += 1;
                 let (p, axis) = self.pair_bound(a, b, cut);
                 if p.bound >= cut {
-                    self.pruned(&p, axis);
+                    self.pruned(&p, unit(axis));
                 } else if heap.len() < qsize {
                     seq = seq.wrapping_add(1);
                     heap.push(ByBound::new(p, seq));
@@ -461,7 +468,7 @@ impl<'a> ClosestSearch<'a> {
                 for (c, axis, go_on) in [(far, far_axis, false), (near, near_axis, near_next)] {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
-                        self.pruned(&c, axis);
+                        self.pruned(&c, unit(axis));
                     } else if go_on {
                         next = Some(c);
                     } else if heap.len() < qsize {
@@ -544,6 +551,17 @@ pub(crate) fn expand(
         let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, axes, cutoff);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
+}
+
+/// `v` scaled to length 1, or zero when it is zero (or too small or large to scale exactly).
+#[inline]
+fn unit(v: Vec3) -> Vec3 {
+    let len2 = v.norm_squared();
+    if len2 >= f64::MIN_POSITIVE && len2.is_finite() {
+        v * (1.0 / len2.sqrt())
+    } else {
+        Vec3::zeros()
+    }
 }
 
 /// A queued BVTT node, ordered so that `BinaryHeap` pops the smallest bound first. Bounds are
