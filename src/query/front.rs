@@ -23,7 +23,9 @@
 //! priority-directed search, and when the relative pose moved little since the query that left it
 //! (else a front that is fine where the models were close would cost more than it saves); it is
 //! dropped once it has grown past [`Front::GROWTH`] times its size after the last search from the
-//! root (the models moved on, leaving fine nodes where nothing is near).
+//! root (the models moved on, leaving fine nodes where nothing is near). It is recorded only when
+//! the last query on the same models was that near, so that queries at unrelated poses do not pay
+//! for one: a coherent motion records from its second query and uses a front from its third.
 
 use super::search::{Search, Strategy};
 use super::traversal::NodePair;
