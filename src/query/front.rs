@@ -167,7 +167,7 @@ impl Front {
             Self::uses_front(search)
                 && *u1 == m1.uid()
                 && *u2 == m2.uid()
-                && Self::near(prev, rel, b1, b2)
+                && Self::change(prev, rel, b1, b2).is_some()
         })
     }
 
@@ -176,12 +176,13 @@ impl Front {
         search.triangle_cache && search.resolve(Strategy::Priority) == Strategy::Priority
     }
 
-    /// Whether the relative pose moved little enough from `prev` to `rel` for a front to pay.
-    fn near(prev: &RelPose, rel: &RelPose, b1: &Bvh, b2: &Bvh) -> bool {
+    /// The change of the relative pose from `prev` to `rel` (rotation, translation), when it is
+    /// small enough for a front to pay.
+    fn change(prev: &RelPose, rel: &RelPose, b1: &Bvh, b2: &Bvh) -> Option<(Mat3, Vec3)> {
         let dr = rel.rot - prev.rot;
         let dt = rel.trans - prev.trans;
         let scale = b1.root_size() + b2.root_size();
-        dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale
+        (dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale).then_some((dr, dt))
     }
 
     /// The front to start the query at `rel` from, if it suits it, with how much its bounds may
@@ -200,11 +201,10 @@ impl Front {
             && self.uid1 == m1.uid()
             && self.uid2 == m2.uid()
             && !self.nodes.is_empty();
-        if !same || !Self::near(prev, rel, b1, b2) {
+        if !same {
             return None;
         }
-        let dr = rel.rot - prev.rot;
-        let dt = rel.trans - prev.trans;
+        let (dr, dt) = Self::change(prev, rel, b1, b2)?;
         let slack_scale = rel.trans.norm() + prev.trans.norm() + b1.reach() + b2.reach();
         let motion = Motion {
             dr,
@@ -311,31 +311,39 @@ mod tests {
         }
     }
 
+    /// A random motion for case `k` (scales and steps cycling through small to large), with the
+    /// poses before and after: rotations `r0`, `r1` and translations `t0`, `t1`.
+    fn random_motion(f: &mut dyn FnMut() -> f64, k: usize) -> (Motion, [Mat3; 2], [Vec3; 2]) {
+        let rot = |f: &mut dyn FnMut() -> f64, angle: f64| -> Mat3 {
+            let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
+            Rotation3::from_axis_angle(&axis, angle).into_inner()
+        };
+        let scale = [1e-3, 1.0, 1e3][k % 3];
+        let a0 = 3.0 * f();
+        let r0 = rot(f, a0);
+        let step = [1e-9, 1e-3, 0.1, 2.0][k % 4];
+        let a1 = step * f();
+        let r1 = rot(f, a1) * r0;
+        let t0 = Vec3::new(f(), f(), f()) * scale;
+        let t1 = t0 + Vec3::new(f(), f(), f()) * scale * step;
+        let m = Motion {
+            dr: r1 - r0,
+            dt: t1 - t0,
+            dr_norm: spectral_bound(&(r1 - r0)),
+            whole: f64::INFINITY,
+            slack_scale: t0.norm() + t1.norm(),
+        };
+        (m, [r0, r1], [t0, t1])
+    }
+
     /// The motion bound holds for every point near the anchor, for small and large motions.
     #[test]
     fn motion_bounds_every_point_near_the_anchor() {
         let mut f = uniform(7);
         let mut tight = 0;
         for k in 0..2000 {
-            let rot = |f: &mut dyn FnMut() -> f64, angle: f64| -> Mat3 {
-                let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
-                Rotation3::from_axis_angle(&axis, angle).into_inner()
-            };
+            let (m, [r0, r1], [t0, t1]) = random_motion(&mut f, k);
             let scale = [1e-3, 1.0, 1e3][k % 3];
-            let a0 = 3.0 * f();
-            let r0 = rot(&mut f, a0);
-            let step = [1e-9, 1e-3, 0.1, 2.0][k % 4];
-            let a1 = step * f();
-            let r1 = rot(&mut f, a1) * r0;
-            let t0 = Vec3::new(f(), f(), f()) * scale;
-            let t1 = t0 + Vec3::new(f(), f(), f()) * scale * step;
-            let m = Motion {
-                dr: r1 - r0,
-                dt: t1 - t0,
-                dr_norm: spectral_bound(&(r1 - r0)),
-                whole: f64::INFINITY,
-                slack_scale: t0.norm() + t1.norm(),
-            };
             let o = Vec3::new(f(), f(), f()) * scale;
             let e = f().abs() * scale;
             let bound = m.bound(&o, e);
@@ -360,24 +368,8 @@ mod tests {
         let mut f = uniform(11);
         let (mut smaller, mut cases) = (0, 0);
         for k in 0..2000 {
-            let rot = |f: &mut dyn FnMut() -> f64, angle: f64| -> Mat3 {
-                let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
-                Rotation3::from_axis_angle(&axis, angle).into_inner()
-            };
+            let (m, [r0, r1], [t0, t1]) = random_motion(&mut f, k);
             let scale = [1e-3, 1.0, 1e3][k % 3];
-            let r0 = rot(&mut f, 3.0);
-            let step = [1e-9, 1e-3, 0.1, 2.0][k % 4];
-            let angle = step * f();
-            let r1 = rot(&mut f, angle) * r0;
-            let t0 = Vec3::new(f(), f(), f()) * scale;
-            let t1 = t0 + Vec3::new(f(), f(), f()) * scale * step;
-            let m = Motion {
-                dr: r1 - r0,
-                dt: t1 - t0,
-                dr_norm: spectral_bound(&(r1 - r0)),
-                whole: f64::INFINITY,
-                slack_scale: t0.norm() + t1.norm(),
-            };
             let o = Vec3::new(f(), f(), f()) * scale;
             let e = f().abs() * scale;
             let n = Vec3::new(f(), f(), f() + 1e-3).normalize();

@@ -178,8 +178,7 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance with the
-    /// unit vector between its closest points (from `ta` to `tb`, in model 1's frame; zero when
-    /// they touch).
+    /// vector between its closest points (from `ta` to `tb`, in model 1's frame).
     fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
         let t2 = self.b2.tri(tb);
@@ -198,12 +197,7 @@ impl<'a> ClosestSearch<'a> {
                 tb,
             };
         }
-        let axis = if c.distance > 0.0 {
-            (c.q - c.p) / c.distance
-        } else {
-            Vec3::zeros()
-        };
-        (c.distance, axis)
+        (c.distance, c.q - c.p)
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
@@ -221,10 +215,13 @@ impl<'a> ClosestSearch<'a> {
                 })
             }
             None => {
-                let (d, axis) = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+                let (d, gap) = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
                 // The pair's own distance, which the closest points' axis shows: the tightest
-                // bound the front can keep for it.
-                self.left(&NodePair { bound: d, ..*p }, axis);
+                // bound the front can keep for it (the axis made a unit vector only for a front).
+                if self.front.is_some() {
+                    let axis = if d > 0.0 { gap / d } else { Vec3::zeros() };
+                    self.left(&NodePair { bound: d, ..*p }, axis);
+                }
                 None
             }
         }
