@@ -8,6 +8,7 @@
 //! might hide a closer pair) and could skip every other. Those nodes form the *minimal BVTT*; how far
 //! a real query's work exceeds it measures how well its search order and initial guess work.
 
+use crate::bounding_volume::Want;
 use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
@@ -73,7 +74,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
             continue;
         }
         out.nodes_below += 1;
-        match expand(b1, b2, rel, &p, f64::INFINITY, false, &mut leaves) {
+        match expand(b1, b2, rel, &p, f64::INFINITY, Want::EXACT, &mut leaves) {
             None => out.leaf_pairs_below += 1,
             Some(children) => {
                 out.bound_tests += 2;

@@ -27,7 +27,7 @@ use crate::math::{Mat3, Vec3};
 /// `{ t + s r.col(0) + u r.col(1) : s in [0, lb[0]], u in [0, lb[1]] }`: `r` holds B's axes (orthonormal
 /// columns, the third being its normal) and `t` its corner, both in A's frame. Sides must be `>= 0`.
 ///
-/// Two thresholds let a caller that needs less than the exact distance skip work:
+/// Three parameters let a caller that needs less than the exact distance skip work:
 /// - `cutoff`: when the distance is at least `cutoff`, any lower bound no less than `cutoff` may be
 ///   returned (a search that prunes such pairs needs no more). The gap between the boxes around
 ///   each rectangle in the other's frame often settles it, and the edge searches then need only
@@ -35,6 +35,11 @@ use crate::math::{Mat3, Vec3};
 /// - `enough`: the search may stop at the first candidate pair at most `enough` apart and return
 ///   its distance (an upper bound of the true one, itself at most `enough`): an overlap test needs
 ///   no more. 0: exact.
+/// - `exact`: false when a distance below `cutoff` need only come back as some lower bound of it
+///   (a depth-first search expands such a pair whatever its bound): once a corner of either
+///   rectangle is seen nearer than `cutoff` to the other, the gap between A and the box around B
+///   comes back, without the certificates or the edges. Whether the answer is below `cutoff` is
+///   the same either way.
 ///
 /// The axis `n` (in A's frame, pointing from A towards B; not normalized) is one along which the
 /// rectangles' projections are at least the returned value apart (the vector between closest
@@ -50,6 +55,7 @@ pub(crate) fn rect_distance(
     lb: [f64; 2],
     enough: f64,
     cutoff: f64,
+    exact: bool,
 ) -> (f64, Vec3) {
     let enough2 = enough * enough;
     // B in A's frame: corners 0, u, v, u + v from `t`, and their offsets from A.
@@ -69,6 +75,11 @@ pub(crate) fn rect_distance(
         offset(&qb[3], la),
     ];
     let (ib, db) = nearest(&rb);
+    if !exact & (db < cut2) {
+        // A corner nearer than the cutoff: so is the distance, and the box gap bounds it (no axis
+        // comes: a pair below the cutoff is not pruned).
+        return (gap_b2.sqrt(), Vec3::zeros());
+    }
     // A corner and its nearest point on the other rectangle are a closest pair when that point is
     // also nearest to the corner on the corner's own rectangle, that is when both of the corner's
     // edges lead away from it: a plane through each, normal to the offset, then separates the
@@ -94,6 +105,10 @@ pub(crate) fn rect_distance(
         offset(&pa[3], lb),
     ];
     let (ia, da) = nearest(&ra);
+    if !exact & (da < cut2) {
+        // As for b's corners above.
+        return (gap_b2.sqrt(), Vec3::zeros());
+    }
     // A's offsets point from B to A in B's frame: `-r o` is the axis in A's frame.
     if (da < db) & ((da <= enough2) | leads_away(&ra[ia], ia, &ua, &va)) {
         return (da.sqrt(), -(r * ra[ia]) * beyond(da, enough2));
@@ -289,9 +304,9 @@ mod tests {
             let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.f().abs() };
             let la = [side(&mut rng, k % 7 == 0), side(&mut rng, k % 5 == 0)];
             let lb = [side(&mut rng, k % 11 == 0), side(&mut rng, k % 4 == 0)];
-            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
+            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
             let cutoff = exact * (0.5 + rng.f().abs());
-            let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff);
+            let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
             if exact < cutoff {
                 below += 1;
                 assert_eq!(got, exact, "case {k}");
@@ -306,6 +321,36 @@ mod tests {
         assert!(below > 5000 && above > 5000, "{below} {above}");
     }
 
+    /// Without `exact`, an answer below the cutoff is a lower bound of the distance, and it is
+    /// below the cutoff exactly when the distance is; at or above the cutoff nothing changes.
+    #[test]
+    fn loose_answers_bound_below_the_cutoff() {
+        let mut rng = Rng(23);
+        let (mut below, mut loose, mut above) = (0, 0, 0);
+        for k in 0..20000 {
+            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
+            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
+            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
+            let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
+            let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
+            let cutoff = exact * (0.5 + rng.f().abs());
+            let (strict, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
+            let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, false);
+            if exact < cutoff {
+                below += 1;
+                assert!(got >= 0.0 && got <= exact, "case {k}: {got} {exact}");
+                loose += usize::from(got < exact);
+            } else {
+                above += 1;
+                assert_eq!(got, strict, "case {k}");
+            }
+        }
+        // The loose answers do come (the point of asking for them), on both sides of the cutoff.
+        assert!(below > 5000 && above > 5000, "{below} {above}");
+        assert!(loose > below / 4, "{loose} of {below}");
+    }
+
     /// When an axis comes with the answer, the rectangles' projections on it are at least that far
     /// apart (a rectangle's projection spans its corners'), with or without a cutoff.
     #[test]
@@ -318,9 +363,9 @@ mod tests {
             let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
             let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
             let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
-            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY);
+            let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
             let cutoff = [f64::INFINITY, 0.5 * exact, exact * 1.5][k % 3];
-            let (got, n) = rect_distance(&r, &t, la, lb, 0.0, cutoff);
+            let (got, n) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
             if n == Vec3::zeros() {
                 none += 1;
                 continue;

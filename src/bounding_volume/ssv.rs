@@ -43,6 +43,32 @@ pub struct Ssv {
     pub radius: f64,
 }
 
+/// What a search wants of the bounds it asks for, besides their being lower bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Want {
+    /// A separating axis with each bound (see [`Ssv::bounds_against`]).
+    pub axes: bool,
+    /// The exact distance of a pair whose bound is below the cutoff. A search that expands such a
+    /// pair whatever its bound is, and orders or prunes pairs by their bounds only loosely
+    /// (depth-first), can do without: then once the cores are seen to be nearer than the cutoff
+    /// (a corner of one within it of the other), a cheaper lower bound comes back.
+    pub exact: bool,
+}
+
+impl Want {
+    /// Exact bounds below the cutoff, no axes.
+    pub const EXACT: Want = Want {
+        axes: false,
+        exact: true,
+    };
+    /// Exact bounds below the cutoff, with their axes.
+    #[cfg(test)]
+    pub const AXES: Want = Want {
+        axes: true,
+        exact: true,
+    };
+}
+
 /// Rounding allowance of a distance bound, relative to the magnitudes that enter it: composing the
 /// pose and the frames costs a few tens of roundings, each at most `EPSILON` of those magnitudes.
 const BOUND_SLACK: f64 = 64.0 * f64::EPSILON;
@@ -155,7 +181,7 @@ impl Ssv {
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
     fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
-        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff).0
+        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff, true).0
     }
 
     /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame, with an axis
@@ -164,7 +190,7 @@ impl Ssv {
     /// which the default volumes never meet). Not inlined: one copy of the kernel serves every
     /// caller (measured faster than inlined copies).
     #[inline(never)]
-    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64) -> (f64, Vec3) {
+    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64, exact: bool) -> (f64, Vec3) {
         use SsvKind::{Line, Point, Rect};
         let none = Vec3::zeros();
         match (a.kind(), b.kind()) {
@@ -181,7 +207,7 @@ impl Ssv {
                 // b's core in the frame of a's core: axes A^T B, corner A^T (ob - oa).
                 let r = a.axes.tr_mul(&b.axes);
                 let t = a.axes.tr_mul(&(b.origin - a.origin));
-                rect_distance(&r, &t, a.lengths, b.lengths, enough, cutoff)
+                rect_distance(&r, &t, a.lengths, b.lengths, enough, cutoff, exact)
             }
         }
     }
@@ -220,17 +246,19 @@ impl Ssv {
     /// [`distance_below`](DistanceVolume::distance_below) gives them, sharing the work of posing
     /// `b`. `inverse`: `rel` poses the `a`s in `b`'s frame instead.
     ///
-    /// With `axes`, each bound comes with a separating axis (zero without): a direction, in the frame `rel` maps into, from the volume that lives there towards the one
-    /// `rel` poses (from `a` to `b`, or from `b` to `a` when `inverse`), along which the two are at
-    /// least the bound apart; not normalized, and zero when there is none to give. Front tracking
-    /// bounds how much the bound can shrink from how far the points move along it.
+    /// With `want.axes`, each bound comes with a separating axis (zero without): a direction, in
+    /// the frame `rel` maps into, from the volume that lives there towards the one `rel` poses
+    /// (from `a` to `b`, or from `b` to `a` when `inverse`), along which the two are at least the
+    /// bound apart; not normalized, and zero when there is none to give. Front tracking bounds how
+    /// much the bound can shrink from how far the points move along it. Without `want.exact`, a
+    /// bound below `cutoff` may be any lower bound of the distance (see [`Want`]).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
         a: [&Ssv; N],
         b: &Ssv,
         rel: &RelPose,
         inverse: bool,
-        axes: bool,
+        want: Want,
         cutoff: f64,
     ) -> [(f64, Vec3); N] {
         let moved = if inverse {
@@ -247,11 +275,11 @@ impl Ssv {
             // points found that near settles it.
             let radii = a.radius + moved.radius;
             let (bound, axis) = Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
-                Ssv::cores_distance_here(a, &moved, radii + slack, core_cutoff)
+                Ssv::cores_distance_here(a, &moved, radii + slack, core_cutoff, want.exact)
             });
             // From the frame of a's axes into a's model frame, then (inverse) into b's, turned to
             // point from b to a. (For every bound: a branch on the cutoff costs more.)
-            *out = if axes {
+            *out = if want.axes {
                 let axis = a.axes * axis;
                 (bound, if inverse { -(rel.rot * axis) } else { axis })
             } else {
@@ -317,7 +345,7 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        Ssv::bounds_against([a], b, rel, false, false, cutoff)[0].0
+        Ssv::bounds_against([a], b, rel, false, Want::EXACT, cutoff)[0].0
     }
 }
 
@@ -510,8 +538,9 @@ mod tests {
             };
             let cutoff = [f64::INFINITY, 0.3, 1.0][k % 3];
             // b posed by rel against a, then a posed by rel's inverse against b.
-            let [(bound, axis)] = Ssv::bounds_against([&a], &b, &rel, false, true, cutoff);
-            let [(bound_inv, axis_inv)] = Ssv::bounds_against([&b], &a, &rel, true, true, cutoff);
+            let [(bound, axis)] = Ssv::bounds_against([&a], &b, &rel, false, Want::AXES, cutoff);
+            let [(bound_inv, axis_inv)] =
+                Ssv::bounds_against([&b], &a, &rel, true, Want::AXES, cutoff);
             for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
                 cases += 1;
                 if axis == Vec3::zeros() {

@@ -12,7 +12,7 @@
 use super::front::{FrontPair, Motion};
 use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
-use crate::bounding_volume::{DistanceVolume, Ssv};
+use crate::bounding_volume::{DistanceVolume, Ssv, Want};
 use crate::bvh::{leaf_triangle, Bvh, NodeRef};
 use crate::error::Error;
 use crate::geometry::{tri_distance, Tri};
@@ -201,11 +201,15 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
-    /// their bounds (exact below `cutoff`) and separating axes (see [`expand`]), nearer first.
+    /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]),
+    /// nearer first.
     #[inline]
-    fn visit(&mut self, p: &NodePair, cutoff: f64) -> Option<[Child; 2]> {
-        let axes = self.front.is_some();
-        match expand(self.b1, self.b2, &self.rel, p, cutoff, axes, self.leaves) {
+    fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
+        let want = Want {
+            axes: self.front.is_some(),
+            exact,
+        };
+        match expand(self.b1, self.b2, &self.rel, p, cutoff, want, self.leaves) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;
                 Some(if y.0.bound < x.0.bound {
@@ -288,8 +292,11 @@ impl<'a> ClosestSearch<'a> {
         let (b1, b2) = (self.b1, self.b2);
         let va = self.leaves.first.get(a, |r| b1.ssv(r));
         let vb = self.leaves.second.get(b, |r| b2.ssv(r));
-        let axes = self.front.is_some();
-        let [(bound, axis)] = Ssv::bounds_against([&va], &vb, &self.rel, false, axes, cutoff);
+        let want = Want {
+            axes: self.front.is_some(),
+            exact: true,
+        };
+        let [(bound, axis)] = Ssv::bounds_against([&va], &vb, &self.rel, false, want, cutoff);
         (NodePair { a, b, bound }, axis)
     }
 
@@ -316,6 +323,11 @@ impl<'a> ClosestSearch<'a> {
     }
 
     /// Depth-first, nearer child first. Returns whether `stop` ended the search.
+    ///
+    /// It asks for loose bounds (see [`Want`]): a pair below the cutoff is expanded whatever its
+    /// bound, and the loose bound still prunes it if the cutoff falls below it before its turn;
+    /// only the order of two siblings suffers a little. On the nested shells, where most pairs
+    /// are below the cutoff, that takes nearly a quarter off a query's time (BENCHMARKS.md).
     fn depth_first(
         &mut self,
         root: NodePair,
@@ -330,7 +342,7 @@ impl<'a> ClosestSearch<'a> {
                 self.pruned(&p, Vec3::zeros());
                 continue;
             }
-            if let Some([(near, _), (far, _)]) = self.visit(&p, cut) {
+            if let Some([(near, _), (far, _)]) = self.visit(&p, cut, false) {
                 stack.push(far);
                 stack.push(near);
             } else if stop(self.best.d) {
@@ -364,7 +376,7 @@ impl<'a> ClosestSearch<'a> {
                     self.pruned(&p, Vec3::zeros());
                     continue;
                 }
-                match self.visit(&p, cut) {
+                match self.visit(&p, cut, true) {
                     Some(children) => queue.extend(children.map(|c| c.0)),
                     None if stop(self.best.d) => break,
                     None => {}
@@ -452,7 +464,7 @@ impl<'a> ClosestSearch<'a> {
                     self.pruned(&p, Vec3::zeros());
                     break;
                 }
-                let Some([(near, near_axis), (far, far_axis)]) = self.visit(&p, cut) else {
+                let Some([(near, near_axis), (far, far_axis)]) = self.visit(&p, cut, true) else {
                     if stop(self.best.d) {
                         break;
                     }
@@ -519,7 +531,7 @@ pub(crate) fn expand(
     rel: &RelPose,
     p: &NodePair,
     cutoff: f64,
-    axes: bool,
+    want: Want,
     leaves: &mut LeafVolumes,
 ) -> Option<[Child; 2]> {
     let (a, b) = (p.a, p.b);
@@ -540,13 +552,13 @@ pub(crate) fn expand(
         let fixed = leaves.second.get(b, ssv2);
         let [c0, c1] = b1.nodes[a as usize].children;
         let (v0, v1) = (leaves.first.get(c0, ssv1), leaves.first.get(c1, ssv1));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, axes, cutoff);
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, want, cutoff);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
         let fixed = leaves.first.get(a, ssv1);
         let [c0, c1] = b2.nodes[b as usize].children;
         let (v0, v1) = (leaves.second.get(c0, ssv2), leaves.second.get(c1, ssv2));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, axes, cutoff);
+        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, want, cutoff);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
