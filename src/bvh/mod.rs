@@ -26,8 +26,10 @@ use crate::model::CollisionVolume;
 /// a leaf, holding triangle `-r - 1`.
 pub(crate) type NodeRef = i32;
 
-/// One inner node of the hierarchy.
+/// One inner node of the hierarchy. Laid out in the order written (`repr(C)`): what a distance query
+/// reads comes first, in the same cache lines.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct Node {
     /// The first two axes of the node's frame (orthonormal); the third is their cross product.
     axes: [Vec3; 2],
@@ -37,11 +39,11 @@ pub(crate) struct Node {
     ssv_radius: f64,
     /// The swept sphere volume's size, which the descent rule compares at every step.
     ssv_size: f64,
+    /// The two children.
+    pub children: [NodeRef; 2],
     /// The box's centre and half extents (see [`Obb`]).
     obb_center: Vec3,
     obb_half: Vec3,
-    /// The two children.
-    pub children: [NodeRef; 2],
 }
 
 impl Node {
