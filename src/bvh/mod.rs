@@ -101,7 +101,10 @@ impl Node {
 /// function, so the frame a volume was fitted on is recovered bit for bit.
 #[inline(always)]
 pub(crate) fn frame_from(a0: &Vec3, a1: &Vec3) -> Mat3 {
-    Mat3::from_columns(&[*a0, *a1, a0.cross(a1)])
+    // Entry by entry (row-major arguments): built in place, where `from_columns` goes through a
+    // copy.
+    let c = a0.cross(a1);
+    Mat3::new(a0.x, a1.x, c.x, a0.y, a1.y, c.y, a0.z, a1.z, c.z)
 }
 
 /// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
