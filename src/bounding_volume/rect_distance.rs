@@ -121,18 +121,49 @@ pub(crate) fn rect_distance(
     // Below the cutoff the answer is exact; at or above it, any value in [cutoff, distance] will
     // do, so the edges need only beat the cutoff. No axis comes from here: an exact answer below
     // the cutoff is not pruned, and the cutoff itself has no axis to show it.
-    let mut best = least(least(db, da), cut2);
+    let best = least(least(db, da), cut2);
+    let b = Corners {
+        p: qb,
+        u,
+        v,
+        o: rb,
+        l: la,
+    };
+    let a = Corners {
+        p: pa,
+        u: ua,
+        v: va,
+        o: ra,
+        l: lb,
+    };
+    (edges(&b, &a, best).sqrt(), Vec3::zeros())
+}
 
-    // The edges of b against a, then those of a against b.
-    best = edge_min(&qb[0], &u, &rb[0], &rb[1], la, best);
-    best = edge_min(&qb[2], &u, &rb[2], &rb[3], la, best);
-    best = edge_min(&qb[0], &v, &rb[0], &rb[2], la, best);
-    best = edge_min(&qb[1], &v, &rb[1], &rb[3], la, best);
-    best = edge_min(&pa[0], &ua, &ra[0], &ra[1], lb, best);
-    best = edge_min(&pa[2], &ua, &ra[2], &ra[3], lb, best);
-    best = edge_min(&pa[0], &va, &ra[0], &ra[2], lb, best);
-    best = edge_min(&pa[1], &va, &ra[1], &ra[3], lb, best);
-    (best.sqrt(), Vec3::zeros())
+/// A rectangle's corners `p` (`p[0]`, `+ u`, `+ v`, `+ u + v`) in the other's frame, their offsets
+/// `o` from the other, and the other's sides `l`.
+struct Corners {
+    p: [Vec3; 4],
+    u: Vec3,
+    v: Vec3,
+    o: [Vec3; 4],
+    l: [f64; 2],
+}
+
+/// The least of `best` and the squared distances of the edges of each rectangle to the other.
+/// Apart from the rest of the kernel (which rarely gets here), so that its registers do not
+/// weigh on the common paths.
+#[inline(never)]
+fn edges(b: &Corners, a: &Corners, mut best: f64) -> f64 {
+    // The edges of b against a, then those of a against b (unrolled: each call site keeps its
+    // own branch history).
+    best = edge_min(&b.p[0], &b.u, &b.o[0], &b.o[1], b.l, best);
+    best = edge_min(&b.p[2], &b.u, &b.o[2], &b.o[3], b.l, best);
+    best = edge_min(&b.p[0], &b.v, &b.o[0], &b.o[2], b.l, best);
+    best = edge_min(&b.p[1], &b.v, &b.o[1], &b.o[3], b.l, best);
+    best = edge_min(&a.p[0], &a.u, &a.o[0], &a.o[1], a.l, best);
+    best = edge_min(&a.p[2], &a.u, &a.o[2], &a.o[3], a.l, best);
+    best = edge_min(&a.p[0], &a.v, &a.o[0], &a.o[2], a.l, best);
+    edge_min(&a.p[1], &a.v, &a.o[1], &a.o[3], a.l, best)
 }
 
 /// The gap between the rectangle `[0, l[0]] x [0, l[1]] x {0}` and the box around four points, as
