@@ -172,15 +172,22 @@ fn edges(b: &Corners, a: &Corners, mut best: f64) -> f64 {
 /// which they are that far apart.
 #[inline(always)]
 fn box_gap(q: &[Vec3; 4], l: [f64; 2]) -> Vec3 {
-    // Per coordinate: how far the points' span lies beyond [lo_k, hi_k], signed by the side
-    // (at most one of the two differences is positive; plain comparisons: the generic
-    // componentwise min/max cost several times as much here).
-    let gap = |k: usize, lo_k: f64, hi_k: f64| {
-        let lo = least(least(q[0][k], q[1][k]), least(q[2][k], q[3][k]));
-        let hi = most(most(q[0][k], q[1][k]), most(q[2][k], q[3][k]));
-        most(lo - hi_k, 0.0) - most(lo_k - hi, 0.0)
-    };
-    Vec3::new(gap(0, 0.0, l[0]), gap(1, 0.0, l[1]), gap(2, 0.0, 0.0))
+    // Per coordinate, plain comparisons: the generic componentwise min/max cost several times as
+    // much here.
+    Vec3::new(
+        span_gap(q, 0, l[0]),
+        span_gap(q, 1, l[1]),
+        span_gap(q, 2, 0.0),
+    )
+}
+
+/// How far the points' coordinate `k` spans beyond `[0, hi_k]`, signed by the side (at most one of
+/// the two differences is positive). A function rather than a closure: the closure was not inlined.
+#[inline(always)]
+fn span_gap(q: &[Vec3; 4], k: usize, hi_k: f64) -> f64 {
+    let lo = least(least(q[0][k], q[1][k]), least(q[2][k], q[3][k]));
+    let hi = most(most(q[0][k], q[1][k]), most(q[2][k], q[3][k]));
+    most(lo - hi_k, 0.0) - most(-hi, 0.0)
 }
 
 /// 1 when `x > y`, else 0.
