@@ -9,6 +9,7 @@
 mod collide;
 mod distance;
 mod front;
+mod queue;
 pub(crate) mod search;
 mod tolerance;
 mod traversal;

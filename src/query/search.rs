@@ -7,9 +7,10 @@
 //! nodes in increasing order of bound, so it expands no node whose bound is above the final distance:
 //! it does the least work any search with these volumes can do (the minimal BVTT). The default
 //! bounds the queue (see [`Search::DEFAULT_QSIZE`]) so that where the bounds cannot tell pairs apart
-//! the overflow goes depth-first instead of growing a heap of a million pairs.
+//! the overflow goes depth-first instead of growing a queue of a million pairs.
 
 use super::front::{FrontPair, Motion};
+use super::queue::RadixQueue;
 use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
 use crate::bounding_volume::{DistanceVolume, Ssv, Want};
@@ -18,8 +19,7 @@ use crate::error::Error;
 use crate::geometry::{tri_distance, Tri};
 use crate::math::{RelPose, Vec3};
 use std::cell::RefCell;
-use std::cmp::Ordering;
-use std::collections::{BinaryHeap, VecDeque};
+use std::collections::VecDeque;
 
 /// The order in which a search visits the BVTT.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,7 +73,7 @@ impl Default for Search {
 impl Search {
     /// The default queue size. Large enough that on every benchmark workload but the nested shells
     /// the queue never fills, so the search does the minimal work; small enough that where the
-    /// bounds cannot tell pairs apart (nested shells: about a million pairs with bound 0) the heap
+    /// bounds cannot tell pairs apart (nested shells: about a million pairs with bound 0) the queue
     /// stays in cache and the overflow, searched depth-first, finds a good answer soon. Measured in
     /// BENCHMARKS.md: unbounded, the shells took 3.7 times as long (28 times with rel_err 0.1).
     pub const DEFAULT_QSIZE: usize = 1024;
@@ -393,9 +393,11 @@ impl<'a> ClosestSearch<'a> {
     /// Priority-directed: a queue of up to `qsize` BVTT nodes ordered by bound; a node that does not
     /// fit is searched depth-first at once.
     ///
-    /// After expanding a node, its nearer child goes on at once without passing through the queue
-    /// when no queued node has a smaller bound: it is the one the queue would give next anyway, so
-    /// the order is the same and half the queue operations are saved.
+    /// The queue is a radix heap (`queue.rs`), which wants no node pushed below the last popped:
+    /// a child's bound is raised to its parent's (a bound on the child's triangles too). After
+    /// expanding a node, its nearer child goes on at once without passing through the queue when
+    /// no queued node can have a smaller bound (the queue is empty, or the child is at the last
+    /// popped bound): it is the one the queue would give next anyway, so the order is the same.
     ///
     /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
     /// bounds were computed before `motion`: a seed whose bound less the motion of its points (along
@@ -411,13 +413,13 @@ impl<'a> ClosestSearch<'a> {
         stop: impl Fn(f64) -> bool + Copy,
     ) {
         thread_local! {
-            static QUEUE: RefCell<BinaryHeap<ByBound>> = const { RefCell::new(BinaryHeap::new()) };
+            static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
         }
         QUEUE.with(|q| {
-            let mut heap = q.take();
-            heap.clear();
+            // Borrowed rather than taken: a fresh queue is 65 buckets to set up.
+            let mut queue = q.borrow_mut();
+            queue.clear();
             let mut next = root;
-            let mut seq = 0u32;
             for (i, &FrontPair { pair: seed, axis }) in seeds.iter().enumerate() {
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
@@ -437,9 +439,8 @@ impl<'a> ClosestSearch<'a> {
                 let (p, axis) = self.pair_bound(a, b, cut);
                 if p.bound >= cut {
                     self.pruned(&p, unit(axis));
-                } else if heap.len() < qsize {
-                    seq = seq.wrapping_add(1);
-                    heap.push(ByBound::new(p, seq));
+                } else if queue.len() < qsize {
+                    queue.push(p);
                 } else if self.depth_first(p, cutoff, stop) {
                     // Stopped: the other seeds are left unvisited, with 0 as their bound.
                     for s in &seeds[i + 1..] {
@@ -451,13 +452,11 @@ impl<'a> ClosestSearch<'a> {
                             Vec3::zeros(),
                         );
                     }
-                    for c in heap.drain() {
-                        self.pruned(&c.pair(), Vec3::zeros());
-                    }
+                    queue.drain(|c| self.pruned(&c, Vec3::zeros()));
                     break;
                 }
             }
-            'search: while let Some(p) = next.take().or_else(|| heap.pop().map(ByBound::pair)) {
+            'search: while let Some(p) = next.take().or_else(|| queue.pop()) {
                 let cut = cutoff(self.best.d);
                 if p.bound >= cut {
                     // Every queued node has a bound at least this large: all are pruned.
@@ -470,20 +469,23 @@ impl<'a> ClosestSearch<'a> {
                     }
                     continue;
                 };
-                // The farther child waits in the queue; the nearer goes on at once if it is the
-                // nearest pending node, else waits too.
-                let near_next = heap
-                    .peek()
-                    .map_or(true, |top| top.pair().bound >= near.bound);
+                // A child's bound is raised to its parent's, which bounds its triangles too: the
+                // queue wants every node pushed at least as far as the last one popped.
+                let [near, far] = [near, far].map(|c| NodePair {
+                    bound: c.bound.max(p.bound),
+                    ..c
+                });
+                // The farther child waits in the queue; the nearer goes on at once if no queued
+                // node can be nearer (none is below the last popped), else waits too.
+                let near_next = queue.len() == 0 || near.bound <= queue.floor();
                 for (c, axis, go_on) in [(far, far_axis, false), (near, near_axis, near_next)] {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
                         self.pruned(&c, unit(axis));
                     } else if go_on {
                         next = Some(c);
-                    } else if heap.len() < qsize {
-                        seq = seq.wrapping_add(1);
-                        heap.push(ByBound::new(c, seq));
+                    } else if queue.len() < qsize {
+                        queue.push(c);
                     } else if self.depth_first(c, cutoff, stop) {
                         if c.a == far.a && c.b == far.b {
                             // The nearer child is left unvisited too.
@@ -497,10 +499,7 @@ impl<'a> ClosestSearch<'a> {
             if let Some(p) = next {
                 self.pruned(&p, Vec3::zeros());
             }
-            for c in heap.drain() {
-                self.pruned(&c.pair(), Vec3::zeros());
-            }
-            q.replace(heap);
+            queue.drain(|c| self.pruned(&c, Vec3::zeros()));
         });
     }
 }
@@ -571,52 +570,5 @@ fn unit(v: Vec3) -> Vec3 {
         v * (1.0 / len2.sqrt())
     } else {
         Vec3::zeros()
-    }
-}
-
-/// A queued BVTT node, ordered so that `BinaryHeap` pops the smallest bound first. Bounds are
-/// never negative nor NaN, and the bit patterns of such doubles (with -0 made +0) order as the
-/// numbers do: the heap compares integers.
-#[derive(Clone, Copy, PartialEq, Eq)]
-struct ByBound {
-    key: u64,
-    /// The order of pushing: among equal bounds the latest pushed comes first (depth-first
-    /// among ties, which reaches a touching pair soonest where many bounds are 0).
-    seq: u32,
-    a: NodeRef,
-    b: NodeRef,
-}
-
-impl ByBound {
-    #[inline(always)]
-    fn new(p: NodePair, seq: u32) -> Self {
-        debug_assert!(p.bound >= 0.0);
-        ByBound {
-            key: (p.bound + 0.0).to_bits(),
-            seq,
-            a: p.a,
-            b: p.b,
-        }
-    }
-
-    #[inline(always)]
-    fn pair(self) -> NodePair {
-        NodePair {
-            a: self.a,
-            b: self.b,
-            bound: f64::from_bits(self.key),
-        }
-    }
-}
-
-impl PartialOrd for ByBound {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for ByBound {
-    #[inline(always)]
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.key.cmp(&self.key).then(self.seq.cmp(&other.seq))
     }
 }
