@@ -172,6 +172,7 @@ pub fn distance_into(
         Strategy::Priority,
         cutoff,
         |d| d <= 0.0,
+        false,
         front,
     );
     let new_front = search.take_front();

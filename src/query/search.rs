@@ -234,15 +234,18 @@ impl<'a> ClosestSearch<'a> {
     /// Runs the search; `Auto` runs as `auto` (the caller's query knows which is best for it).
     /// `cutoff(best)` is the least bound of a BVTT node that cannot improve the
     /// answer `best` enough to be worth visiting (nondecreasing in `best`): such nodes are pruned.
-    /// `stop(best)` ends the search early.
+    /// `stop(best)` ends the search early. `fixed_cutoff`: the cutoff does not fall before `stop`
+    /// ends the search (a tolerance query's), so that a depth-first search loses nothing by asking
+    /// for loose bounds (see [`depth_first`](ClosestSearch::depth_first)).
     pub fn run(
         &mut self,
         search: &Search,
         auto: Strategy,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
+        fixed_cutoff: bool,
     ) {
-        self.run_from(search, auto, cutoff, stop, None)
+        self.run_from(search, auto, cutoff, stop, fixed_cutoff, None)
     }
 
     /// As [`run`](ClosestSearch::run), starting from the BVTT nodes of `front` (a cut of the BVTT:
@@ -255,6 +258,7 @@ impl<'a> ClosestSearch<'a> {
         auto: Strategy,
         cutoff: impl Fn(f64) -> f64 + Copy,
         stop: impl Fn(f64) -> bool + Copy,
+        fixed_cutoff: bool,
         front: Option<(&[FrontPair], Motion)>,
     ) {
         if stop(self.best.d) {
@@ -268,7 +272,7 @@ impl<'a> ClosestSearch<'a> {
         let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
         match strategy {
             Strategy::Auto | Strategy::DepthFirst => {
-                self.depth_first(root, cutoff, stop);
+                self.depth_first(root, cutoff, stop, fixed_cutoff);
             }
             Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
             Strategy::Priority => self.priority(Some(root), &[], None, search.qsize, cutoff, stop),
@@ -324,15 +328,20 @@ impl<'a> ClosestSearch<'a> {
 
     /// Depth-first, nearer child first. Returns whether `stop` ended the search.
     ///
-    /// It asks for loose bounds (see [`Want`]): a pair below the cutoff is expanded whatever its
-    /// bound, and the loose bound still prunes it if the cutoff falls below it before its turn;
-    /// only the order of two siblings suffers a little. On the nested shells, where most pairs
-    /// are below the cutoff, that takes nearly a quarter off a query's time (BENCHMARKS.md).
+    /// With `loose`, it asks for loose bounds (see [`Want`]): a pair below the cutoff is expanded
+    /// whatever its bound, and only the order of two siblings suffers a little, as long as the
+    /// cutoff does not fall much before the pair's turn (a lower bound that is not the exact one
+    /// then prunes less). So the overflow of a priority-directed search, whose cutoff is nearly
+    /// final by then, and a tolerance query, whose cutoff is fixed, ask for them; a distance
+    /// query's depth-first search from the root does not (on the spheres of BENCHMARKS.md, loose
+    /// bounds there took 1.6 times the bound tests). On the nested shells, where most pairs are
+    /// below the cutoff, they take about a quarter off a query's time.
     fn depth_first(
         &mut self,
         root: NodePair,
         cutoff: impl Fn(f64) -> f64,
         stop: impl Fn(f64) -> bool,
+        loose: bool,
     ) -> bool {
         let mut stack = PairStack::new();
         stack.push(root);
@@ -342,7 +351,7 @@ impl<'a> ClosestSearch<'a> {
                 self.pruned(&p, Vec3::zeros());
                 continue;
             }
-            if let Some([(near, _), (far, _)]) = self.visit(&p, cut, false) {
+            if let Some([(near, _), (far, _)]) = self.visit(&p, cut, !loose) {
                 stack.push(far);
                 stack.push(near);
             } else if stop(self.best.d) {
@@ -441,7 +450,7 @@ impl<'a> ClosestSearch<'a> {
                     self.pruned(&p, unit(axis));
                 } else if queue.len() < qsize {
                     queue.push(p);
-                } else if self.depth_first(p, cutoff, stop) {
+                } else if self.depth_first(p, cutoff, stop, true) {
                     // Stopped: the other seeds are left unvisited, with 0 as their bound.
                     for s in &seeds[i + 1..] {
                         self.pruned(
@@ -486,7 +495,7 @@ impl<'a> ClosestSearch<'a> {
                         next = Some(c);
                     } else if queue.len() < qsize {
                         queue.push(c);
-                    } else if self.depth_first(c, cutoff, stop) {
+                    } else if self.depth_first(c, cutoff, stop, true) {
                         if c.a == far.a && c.b == far.b {
                             // The nearer child is left unvisited too.
                             self.pruned(&near, Vec3::zeros());

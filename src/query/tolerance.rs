@@ -118,6 +118,8 @@ pub fn tolerance_into(
         Strategy::DepthFirst,
         |d| d.min(above),
         |d| d <= tolerance,
+        // The cutoff falls only with a pair within the tolerance, which stops the search.
+        true,
     );
     let best = search.best;
     result.stats = search.stats;
