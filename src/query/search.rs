@@ -425,7 +425,7 @@ impl<'a> ClosestSearch<'a> {
             static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
         }
         QUEUE.with(|q| {
-            // Borrowed rather than taken: a fresh queue is 65 buckets to set up.
+            // Borrowed rather than taken: a fresh queue is 64 buckets to set up.
             let mut queue = q.borrow_mut();
             queue.clear();
             let mut next = root;
