@@ -89,22 +89,11 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
 mod tests {
     use super::*;
     use crate::query::{distance, distance_into, DistanceOptions, DistanceResult, Search};
-
-    /// A small deterministic generator (tests only).
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::test_rng::Lcg;
 
     /// A closed-ish bumpy blob: a UV sphere with a random radius per vertex ring.
     fn blob(rng: &mut Lcg, nlat: usize, nlon: usize) -> Model {
-        let radii: Vec<f64> = (0..=nlat).map(|_| 0.8 + 0.4 * rng.next()).collect();
+        let radii: Vec<f64> = (0..=nlat).map(|_| 0.8 + 0.4 * rng.unit()).collect();
         let v = |i: usize, j: usize| {
             let th = std::f64::consts::PI * i as f64 / nlat as f64;
             let ph = 2.0 * std::f64::consts::PI * j as f64 / nlon as f64;
@@ -128,7 +117,7 @@ mod tests {
     }
 
     fn rotation(rng: &mut Lcg) -> [[f64; 3]; 3] {
-        let (u1, u2, u3) = (rng.next(), rng.next(), rng.next());
+        let (u1, u2, u3) = (rng.unit(), rng.unit(), rng.unit());
         let (s1, s2) = ((1.0 - u1).sqrt(), u1.sqrt());
         let (a, b) = (
             2.0 * std::f64::consts::PI * u2,
@@ -158,9 +147,9 @@ mod tests {
     fn poses(rng: &mut Lcg, n: usize) -> Vec<(Pose, Pose)> {
         (0..n)
             .map(|_| {
-                let dir = [rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5];
+                let dir = [rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5];
                 let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
-                let c = 2.5 + 1.5 * rng.next();
+                let c = 2.5 + 1.5 * rng.unit();
                 let t = [dir[0] / len * c, dir[1] / len * c, dir[2] / len * c];
                 (
                     Pose::new(rotation(rng), [0.0; 3]),

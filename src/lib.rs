@@ -47,6 +47,8 @@ pub mod geometry;
 pub mod math;
 pub mod model;
 pub mod query;
+#[cfg(test)]
+mod test_rng;
 
 pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};

@@ -327,6 +327,17 @@ mod tests {
         }
     }
 
+    /// Case `k` of a random pair of rectangles (B's axes and corner in A's frame, the sides), at
+    /// one of three spreads, some of them segments.
+    fn random_pair(rng: &mut Rng, k: usize) -> (Mat3, Vec3, [f64; 2], [f64; 2]) {
+        let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
+        let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
+        let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
+        let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
+        let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+        (r, t, la, lb)
+    }
+
     /// With a cutoff, the answer is the exact distance when that is below the cutoff, and otherwise
     /// lies between the cutoff and the exact distance: a valid lower bound that a search prunes.
     #[test]
@@ -366,11 +377,7 @@ mod tests {
         let mut rng = Rng(23);
         let (mut below, mut loose, mut above) = (0, 0, 0);
         for k in 0..20000 {
-            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
-            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
-            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
-            let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
-            let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+            let (r, t, la, lb) = random_pair(&mut rng, k);
             let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
             let cutoff = exact * (0.5 + rng.f().abs());
             let (strict, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
@@ -396,11 +403,7 @@ mod tests {
         let mut rng = Rng(29);
         let (mut given, mut none) = (0, 0);
         for k in 0..20000 {
-            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
-            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
-            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
-            let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
-            let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+            let (r, t, la, lb) = random_pair(&mut rng, k);
             let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
             let cutoff = [f64::INFINITY, 0.5 * exact, exact * 1.5][k % 3];
             let (got, n) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);

@@ -488,6 +488,7 @@ pub(super) fn ball_centre(n: usize, at: impl Fn(usize) -> Vec3) -> (Vec3, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Lcg;
     use nalgebra::{Rotation3, Unit};
 
     /// How far `b` lies beyond `a` along the unit axis `n`: the gap between their projections (a
@@ -511,13 +512,8 @@ mod tests {
     /// the posed one, in that frame, and show the bound, whichever side is posed.
     #[test]
     fn bound_axes_separate_by_the_bound() {
-        let mut state = 5u64;
-        let mut f = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = Lcg(5);
+        let mut f = move || rng.signed();
         let (mut given, mut cases) = (0, 0);
         for k in 0..4000 {
             let mut rot = || -> Mat3 {

@@ -437,6 +437,7 @@ pub(crate) fn principal_axes(points: &[Vec3]) -> Mat3 {
 mod tests {
     use super::*;
     use crate::bounding_volume::BoundingVolume;
+    use crate::test_rng::Lcg;
 
     fn check_containment(bvh: &Bvh) {
         // Every node's volumes contain every vertex of every triangle below it.
@@ -481,16 +482,14 @@ mod tests {
         [Vec3::from(a), Vec3::from(b), Vec3::from(c)]
     }
 
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    /// Uniform in [-0.5, 0.5).
+    fn lcg(rng: &mut Lcg) -> f64 {
+        rng.unit() - 0.5
     }
 
     #[test]
     fn every_node_contains_its_triangles() {
-        let mut s = 11u64;
+        let mut s = Lcg(11);
         for (n, scale, offset) in [
             (1, 1.0, 0.0),
             (2, 1.0, 0.0),
@@ -561,7 +560,7 @@ mod tests {
     fn node_fits_equal_the_separate_fits() {
         // `fit_volumes` (shared frame coordinates, skipped covers) gives exactly the volumes of
         // `Ssv::fit` and `Obb::fit`, on clouds, flat and duplicated sets, far from the origin.
-        let mut s = 5u64;
+        let mut s = Lcg(5);
         let mut local = Vec::new();
         let mut keys = Vec::new();
         for case in 0..400 {

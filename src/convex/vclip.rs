@@ -747,17 +747,13 @@ fn exhaustive(s: &[Side; 2]) -> ([Feature; 2], bool, [Vec3; 2], f64) {
 mod tests {
     use super::*;
     use crate::math::Pose;
+    use crate::test_rng::Lcg;
 
     /// The exhaustive fallback agrees with the search on random pairs.
     #[test]
     fn exhaustive_scan_agrees_with_search() {
-        let mut seed = 7u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = Lcg(7);
+        let mut rnd = move || rng.signed();
         let mut hull = |n: usize| {
             let pts: Vec<[f64; 3]> = (0..n).map(|_| [rnd(), rnd(), rnd()]).collect();
             ConvexModel::from_points(&pts).unwrap()

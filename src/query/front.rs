@@ -260,17 +260,13 @@ impl Front {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Lcg;
     use nalgebra::{Rotation3, Unit};
 
     /// A seeded source of uniform doubles in [-1, 1).
     fn uniform(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
+        let mut rng = Lcg(seed);
+        move || rng.signed()
     }
 
     /// Every vertex below a node lies within the node's anchor distance of its anchor.

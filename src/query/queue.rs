@@ -156,6 +156,7 @@ impl RadixQueue {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Lcg;
     use std::collections::BinaryHeap;
 
     /// Pops in the order (bound ascending, latest pushed first among equal bounds), which a binary
@@ -164,13 +165,8 @@ mod tests {
     /// bounds of every magnitude.
     #[test]
     fn pops_as_an_ordered_heap() {
-        let mut state = 11u64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            state >> 11
-        };
+        let mut rng = Lcg(11);
+        let mut next = move || rng.bits();
         let mut q = RadixQueue::default();
         for round in 0..50 {
             q.clear();
