@@ -277,11 +277,26 @@ impl PlaneFilter {
     /// infinite evaluation (overflow) is never certain.
     #[inline]
     pub(crate) fn eval(&self, d: &Vec3) -> (f64, bool) {
+        let (v, err) = self.eval_with_error(d);
+        (v, v.abs() > err)
+    }
+
+    /// The float value of `orient3d(a, b, c, d)` and a bound on its error (a NaN or infinite
+    /// value: the bound is not finite, or the comparison with it fails).
+    #[inline]
+    pub(crate) fn eval_with_error(&self, d: &Vec3) -> (f64, f64) {
         let w = d - self.base;
         let v = self.n.x * w.x + self.n.y * w.y + self.n.z * w.z;
         let perm = self.nabs.x * w.x.abs() + self.nabs.y * w.y.abs() + self.nabs.z * w.z.abs();
         // The constant covers the final products' own underflow (3 x 2^-1075).
-        (v, v.abs() > ERR3 * perm + UNDERFLOW)
+        (v, ERR3 * perm + UNDERFLOW)
+    }
+
+    /// An upper bound on the length of the exact `(b - a) x (c - a)`, of which `n` is the float
+    /// value: each component is within a few roundings of its permanent.
+    #[inline]
+    pub(crate) fn normal_length_bound(&self) -> f64 {
+        self.n.norm() + 8.0 * f64::EPSILON * (self.nabs.x + self.nabs.y + self.nabs.z)
     }
 }
 

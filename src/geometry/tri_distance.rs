@@ -14,18 +14,66 @@ use crate::math::Vec3;
 /// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
 /// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
+    match tri_distance_below(a, b, f64::INFINITY) {
+        Near::Closest(c) => c,
+        // Nothing is at least an infinite distance apart.
+        Near::Apart { .. } => unreachable!(),
+    }
+}
+
+/// What [`tri_distance_below`] finds.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Near {
+    /// The distance and closest points, as [`tri_distance`] gives them.
+    Closest(ClosestPoints),
+    /// The triangles are at least `bound` (no less than the cutoff) apart along the unit vector
+    /// `axis`, which points from the first triangle towards the second.
+    Apart { bound: f64, axis: Vec3 },
+}
+
+/// As [`tri_distance`] below `cutoff`. At or beyond it, when one triangle lies strictly on one side
+/// of the other's plane and its nearest vertex there is at least `cutoff` from the plane, only
+/// that bound comes back, with the plane's normal as the axis: a search that prunes such pairs
+/// needs no more, and it is most of a triangle test's work saved.
+pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
     if let Some(k) = kernel_rescale(m) {
         // Huge or tiny coordinates: work at unit scale (exactly, by a power of two).
         let (s, inv) = (pow2(k), pow2(-k));
-        let r = distance_core(&a.map(|v| v * s), &b.map(|v| v * s));
-        return ClosestPoints {
-            distance: r.distance * inv,
-            p: r.p * inv,
-            q: r.q * inv,
+        return match distance_core(&a.map(|v| v * s), &b.map(|v| v * s), cutoff * s) {
+            Near::Closest(r) => Near::Closest(ClosestPoints {
+                distance: r.distance * inv,
+                p: r.p * inv,
+                q: r.q * inv,
+            }),
+            Near::Apart { bound, axis } => Near::Apart {
+                bound: bound * inv,
+                axis,
+            },
         };
     }
-    distance_core(a, b)
+    distance_core(a, b, cutoff)
+}
+
+/// `Near::Apart` when the points of `sides` (relative to `plane`) are certainly on one side and
+/// at least `cutoff` from it; `toward`: the sign that turns the axis from the first triangle
+/// towards the second (1 when `plane` is the first triangle's).
+#[inline]
+fn apart(plane: &PlaneFilter, sides: &Sides, cutoff: f64, toward: f64) -> Option<Near> {
+    let clearance = sides.clearance();
+    if clearance <= 0.0 {
+        return None;
+    }
+    // The exact heights are the exact orientations over the exact normal's length.
+    let bound = clearance / plane.normal_length_bound();
+    if bound < cutoff {
+        return None;
+    }
+    let side = if sides.o[0] > 0.0 { toward } else { -toward };
+    Some(Near::Apart {
+        bound,
+        axis: plane.n * (side / plane.n.norm()),
+    })
 }
 
 /// Which candidate is closest so far.
@@ -39,27 +87,52 @@ enum Feature {
     VertexOfA(usize, Vec3, f64),
 }
 
-fn distance_core(a: &Tri, b: &Tri) -> ClosestPoints {
+fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     let pa = PlaneFilter::new(&a[0], &a[1], &a[2]);
     let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
     // Either triangle strictly on one side of the other's plane is the common, cheap case; then
     // the other side's values are needed only for distances, without error bounds.
     let ob = Sides::eval(&pa, b);
-    let oa = if ob.separated() {
+    let cut = cutoff < f64::INFINITY;
+    if cut {
+        if let Some(far) = apart(&pa, &ob, cutoff, 1.0) {
+            return far;
+        }
+    }
+    // Without a cutoff, a's sides of b's plane are needed only for distances when b is strictly
+    // on one side of a's plane: then no error bounds.
+    let oa = if ob.separated() && !cut {
         Sides::values(&pb, a)
     } else {
-        let oa = Sides::eval(&pb, a);
-        if !oa.separated() {
-            if let Some(x) = intersect::<true>(a, b, oa, ob) {
-                return ClosestPoints {
-                    distance: 0.0,
-                    p: x,
-                    q: x,
-                };
-            }
-        }
-        oa
+        Sides::eval(&pb, a)
     };
+    if cut {
+        if let Some(far) = apart(&pb, &oa, cutoff, -1.0) {
+            return far;
+        }
+    }
+    Near::Closest(closest(a, b, &pa, &pb, oa, ob))
+}
+
+/// The distance and closest points, from the triangles' planes and the sides of each triangle's
+/// vertices relative to the other's plane.
+fn closest(
+    a: &Tri,
+    b: &Tri,
+    pa: &PlaneFilter,
+    pb: &PlaneFilter,
+    oa: Sides,
+    ob: Sides,
+) -> ClosestPoints {
+    if !ob.separated() && !oa.separated() {
+        if let Some(x) = intersect::<true>(a, b, oa, ob) {
+            return ClosestPoints {
+                distance: 0.0,
+                p: x,
+                q: x,
+            };
+        }
+    }
     // Disjoint: a closest pair has a point on an edge of each, or a vertex of one whose
     // projection falls inside the other's face.
     let ea = [a[1] - a[0], a[2] - a[1], a[0] - a[2]];
@@ -281,5 +354,72 @@ impl Face {
             }
         }
         out
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Lcg;
+
+    fn point(rng: &mut Lcg, scale: f64) -> Vec3 {
+        Vec3::new(rng.signed(), rng.signed(), rng.signed()) * scale
+    }
+
+    /// A pair of triangles: random ones, or nearly parallel ones facing each other across a gap
+    /// (where the planes settle most pairs), at coordinates from tiny to huge.
+    fn pair(rng: &mut Lcg, k: usize) -> (Tri, Tri) {
+        let scale = [1.0, 1e-160, 1e160, 1e3][k % 4];
+        let a: Tri = [0, 1, 2].map(|_| point(rng, 1.0));
+        let b = if k % 3 == 0 {
+            [0, 1, 2].map(|_| point(rng, 1.0))
+        } else {
+            let n = (a[1] - a[0]).cross(&(a[2] - a[0])).normalize();
+            let lift = n * (0.01 + rng.unit());
+            a.map(|v| v + lift + point(rng, 0.2))
+        };
+        let (a, b) = (a.map(|v| v * scale), b.map(|v| v * scale));
+        if k % 2 == 0 {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    }
+
+    /// Below the cutoff the answer is the exact one; beyond it, either the exact one or a bound
+    /// between the cutoff and the distance, with a unit axis along which the triangles are that
+    /// far apart.
+    #[test]
+    fn below_the_cutoff_exact_beyond_a_bound_with_its_axis() {
+        let mut rng = Lcg(31);
+        let (mut beyond, mut apart) = (0, 0);
+        for k in 0..20000 {
+            let (a, b) = pair(&mut rng, k);
+            let exact = tri_distance(&a, &b);
+            let cutoff = exact.distance * (0.5 + rng.unit());
+            match tri_distance_below(&a, &b, cutoff) {
+                Near::Closest(c) => assert_eq!(c, exact, "case {k}"),
+                Near::Apart { bound, axis } => {
+                    apart += 1;
+                    assert!(
+                        bound >= cutoff && bound <= exact.distance,
+                        "case {k}: {bound} {cutoff} {exact:?}"
+                    );
+                    assert!((axis.norm() - 1.0).abs() < 1e-12, "case {k}: {axis}");
+                    let lo_b = b.iter().map(|v| axis.dot(v)).fold(f64::INFINITY, f64::min);
+                    let hi_a = a
+                        .iter()
+                        .map(|v| axis.dot(v))
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    let scale = a.iter().chain(&b).map(|v| v.amax()).fold(0.0, f64::max);
+                    assert!(
+                        lo_b - hi_a >= bound - 1e-13 * scale,
+                        "case {k}: {lo_b} {hi_a} {bound}"
+                    );
+                }
+            }
+            beyond += usize::from(exact.distance >= cutoff);
+        }
+        // The planes do settle pairs (the point of the cutoff), most of the facing ones.
+        assert!(apart > beyond / 3, "{apart} of {beyond}");
     }
 }

@@ -37,18 +37,21 @@ pub fn tri_overlap(a: &Tri, b: &Tri) -> bool {
 pub(crate) struct Sides {
     pub o: [f64; 3],
     certain: [bool; 3],
+    /// Bounds on the rounding error of `o` (infinite when not computed).
+    err: [f64; 3],
 }
 
 impl Sides {
     /// Float values, each flagged by whether its sign is certain.
     #[inline]
     pub(crate) fn eval(plane: &PlaneFilter, pts: &Tri) -> Sides {
-        let (o0, c0) = plane.eval(&pts[0]);
-        let (o1, c1) = plane.eval(&pts[1]);
-        let (o2, c2) = plane.eval(&pts[2]);
+        let (o0, e0) = plane.eval_with_error(&pts[0]);
+        let (o1, e1) = plane.eval_with_error(&pts[1]);
+        let (o2, e2) = plane.eval_with_error(&pts[2]);
         Sides {
             o: [o0, o1, o2],
-            certain: [c0, c1, c2],
+            certain: [o0.abs() > e0, o1.abs() > e1, o2.abs() > e2],
+            err: [e0, e1, e2],
         }
     }
 
@@ -62,7 +65,20 @@ impl Sides {
                 plane.value(&pts[2]),
             ],
             certain: [false; 3],
+            err: [f64::INFINITY; 3],
         }
+    }
+
+    /// When the three points are certainly strictly on one side, a lower bound on the least of
+    /// their orientations' magnitudes (exact ones, not the float values); else 0.
+    #[inline]
+    pub(crate) fn clearance(&self) -> f64 {
+        if !self.separated() {
+            return 0.0;
+        }
+        let [o0, o1, o2] = self.o;
+        let [e0, e1, e2] = self.err;
+        (o0.abs() - e0).min(o1.abs() - e1).min(o2.abs() - e2)
     }
 
     /// All three points certainly strictly on the same side.
