@@ -275,12 +275,16 @@ impl Ssv {
             // points found that near settles it.
             let radii = a.radius + moved.radius;
             let (bound, axis) = Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
-                Ssv::cores_distance_here(a, &moved, radii + slack, core_cutoff, want.exact)
+                // In the fixed volume's frame, so that the kernel looks first at the corners of
+                // `a` (a child of the node split, the smaller as a rule), whose box in that frame
+                // is the tighter: 4% fewer instructions on the nested shells, 1.5% elsewhere.
+                Ssv::cores_distance_here(&moved, a, radii + slack, core_cutoff, want.exact)
             });
-            // From the frame of a's axes into a's model frame, then (inverse) into b's, turned to
-            // point from b to a. (For every bound: a branch on the cutoff costs more.)
+            // From the frame of b's axes into a's model frame (from a to b), then (inverse) into
+            // b's, turned to point from b to a. (For every bound: a branch on the cutoff costs
+            // more.)
             *out = if want.axes {
-                let axis = a.axes * axis;
+                let axis = -(moved.axes * axis);
                 (bound, if inverse { -(rel.rot * axis) } else { axis })
             } else {
                 (bound, Vec3::zeros())
