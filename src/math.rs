@@ -8,6 +8,17 @@ pub type Vec3 = Vector3<f64>;
 /// A 3x3 matrix of `f64`.
 pub type Mat3 = Matrix3<f64>;
 
+/// The frame with first axes `a0`, `a1` and third `a0 x a1`. The hierarchy stores only the first
+/// two axes of a frame, and recovers the third through this function, bit for bit as the build
+/// computed it.
+#[inline(always)]
+pub(crate) fn frame_from(a0: &Vec3, a1: &Vec3) -> Mat3 {
+    // Entry by entry (row-major arguments): built in place, where `from_columns` goes through a
+    // copy.
+    let c = a0.cross(a1);
+    Mat3::new(a0.x, a1.x, c.x, a0.y, a1.y, c.y, a0.z, a1.z, c.z)
+}
+
 /// Where a model is in the world: `x_world = rotation * x_model + translation`.
 ///
 /// As in PQP, the columns of `rotation` are the model's axes in world coordinates. The rotation is

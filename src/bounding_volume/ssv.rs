@@ -10,7 +10,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{Mat3, RelPose, Vec3};
+use crate::math::{frame_from, Mat3, RelPose, Vec3};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -41,6 +41,43 @@ pub struct Ssv {
     pub lengths: [f64; 2],
     /// Radius of the swept sphere.
     pub radius: f64,
+}
+
+/// A swept sphere volume as a hierarchy stores it: without the third axis (the normal), which is
+/// the cross product of the first two ([`Ssv::compact`], [`CompactSsv::full`]). The bounds read
+/// it where it lies, and get the normal's part from the other volume's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub(crate) struct CompactSsv {
+    /// The first two axes (orthonormal), in the model frame.
+    pub axes: [Vec3; 2],
+    /// As in [`Ssv`].
+    pub origin: Vec3,
+    pub lengths: [f64; 2],
+    pub radius: f64,
+}
+
+impl CompactSsv {
+    /// The volume with its normal.
+    #[inline(always)]
+    pub fn full(&self) -> Ssv {
+        Ssv {
+            axes: frame_from(&self.axes[0], &self.axes[1]),
+            origin: self.origin,
+            lengths: self.lengths,
+            radius: self.radius,
+        }
+    }
+
+    /// As [`Ssv::scale`].
+    #[inline(always)]
+    fn scale(&self) -> f64 {
+        self.origin.x.abs()
+            + self.origin.y.abs()
+            + self.origin.z.abs()
+            + self.lengths[0]
+            + self.lengths[1]
+    }
 }
 
 /// What a search wants of the bounds it asks for, besides their being lower bounds.
@@ -125,12 +162,17 @@ impl Ssv {
     /// or a rectangle.
     #[inline(always)]
     pub fn kind(&self) -> SsvKind {
-        if self.lengths[1] != 0.0 {
-            SsvKind::Rect
-        } else if self.lengths[0] != 0.0 {
-            SsvKind::Line
-        } else {
-            SsvKind::Point
+        kind_of(self.lengths)
+    }
+
+    /// This volume without its normal.
+    #[inline(always)]
+    pub(crate) fn compact(&self) -> CompactSsv {
+        CompactSsv {
+            axes: [self.axes.column(0).into(), self.axes.column(1).into()],
+            origin: self.origin,
+            lengths: self.lengths,
+            radius: self.radius,
         }
     }
 
@@ -181,7 +223,7 @@ impl Ssv {
     /// between the distance and `enough` may be returned once one is found (see `rect_distance`).
     #[inline]
     fn cores_distance(a: &Ssv, b: &Ssv, rel: &RelPose, enough: f64, cutoff: f64) -> f64 {
-        Ssv::cores_distance_here(a, &b.posed(rel), enough, cutoff, true).0
+        Ssv::cores_distance_here(a, &b.posed(rel).compact(), enough, cutoff, true).0
     }
 
     /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame, with an axis
@@ -190,22 +232,31 @@ impl Ssv {
     /// which the default volumes never meet). Not inlined: one copy of the kernel serves every
     /// caller (measured faster than inlined copies).
     #[inline(never)]
-    fn cores_distance_here(a: &Ssv, b: &Ssv, enough: f64, cutoff: f64, exact: bool) -> (f64, Vec3) {
+    fn cores_distance_here(
+        a: &Ssv,
+        b: &CompactSsv,
+        enough: f64,
+        cutoff: f64,
+        exact: bool,
+    ) -> (f64, Vec3) {
         use SsvKind::{Line, Point, Rect};
         let none = Vec3::zeros();
-        match (a.kind(), b.kind()) {
+        match (a.kind(), kind_of(b.lengths)) {
             (Point, Point) => ((a.origin - b.origin).norm(), none),
-            (Point, _) => (b.core_distance(&a.origin), none),
+            (Point, _) => (b.full().core_distance(&a.origin), none),
             (_, Point) => (a.core_distance(&b.origin), none),
             (Line, Line) => {
                 let p1 = a.origin + a.axes.column(0) * a.lengths[0];
-                let q1 = b.origin + b.axes.column(0) * b.lengths[0];
+                let q1 = b.origin + b.axes[0] * b.lengths[0];
                 let d = segment_segment(&a.origin, &p1, &b.origin, &q1).distance;
                 (d, none)
             }
             (Line | Rect, Line | Rect) => {
-                // b's core in the frame of a's core: axes A^T B, corner A^T (ob - oa).
-                let r = a.axes.tr_mul(&b.axes);
+                // b's core in the frame of a's core: axes A^T B, corner A^T (ob - oa). B's normal
+                // there is the cross product of its first two axes there (a rotation keeps cross
+                // products).
+                let (u, v) = (a.axes.tr_mul(&b.axes[0]), a.axes.tr_mul(&b.axes[1]));
+                let r = frame_from(&u, &v);
                 let t = a.axes.tr_mul(&(b.origin - a.origin));
                 rect_distance(&r, &t, a.lengths, b.lengths, enough, cutoff, exact)
             }
@@ -254,7 +305,7 @@ impl Ssv {
     /// bound below `cutoff` may be any lower bound of the distance (see [`Want`]).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
-        a: [&Ssv; N],
+        a: [&CompactSsv; N],
         b: &Ssv,
         rel: &RelPose,
         inverse: bool,
@@ -291,6 +342,18 @@ impl Ssv {
             };
         }
         out
+    }
+}
+
+/// What a core with these sides is (see [`Ssv::kind`]).
+#[inline(always)]
+fn kind_of(lengths: [f64; 2]) -> SsvKind {
+    if lengths[1] != 0.0 {
+        SsvKind::Rect
+    } else if lengths[0] != 0.0 {
+        SsvKind::Line
+    } else {
+        SsvKind::Point
     }
 }
 
@@ -349,7 +412,7 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        Ssv::bounds_against([a], b, rel, false, Want::EXACT, cutoff)[0].0
+        Ssv::bounds_against([&a.compact()], b, rel, false, Want::EXACT, cutoff)[0].0
     }
 }
 
@@ -538,9 +601,10 @@ mod tests {
             };
             let cutoff = [f64::INFINITY, 0.3, 1.0][k % 3];
             // b posed by rel against a, then a posed by rel's inverse against b.
-            let [(bound, axis)] = Ssv::bounds_against([&a], &b, &rel, false, Want::AXES, cutoff);
+            let (ca, cb) = (a.compact(), b.compact());
+            let [(bound, axis)] = Ssv::bounds_against([&ca], &b, &rel, false, Want::AXES, cutoff);
             let [(bound_inv, axis_inv)] =
-                Ssv::bounds_against([&b], &a, &rel, true, Want::AXES, cutoff);
+                Ssv::bounds_against([&cb], &a, &rel, true, Want::AXES, cutoff);
             for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
                 cases += 1;
                 if axis == Vec3::zeros() {

@@ -3,11 +3,11 @@
 
 #[cfg(test)]
 use super::NodeRef;
-use super::{frame_from, Bvh, Node};
+use super::{Bvh, Node};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
-use crate::math::{Mat3, Vec3};
+use crate::math::{frame_from, Mat3, Vec3};
 use crate::model::{CollisionVolume, VolumeKind};
 use nalgebra::SymmetricEigen;
 

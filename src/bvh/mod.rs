@@ -17,9 +17,9 @@ mod build;
 
 pub(crate) use build::MAX_DEPTH;
 
-use crate::bounding_volume::{BoundingVolume, Obb, Ssv};
+use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::geometry::Tri;
-use crate::math::{Mat3, Vec3};
+use crate::math::{frame_from, Mat3, Vec3};
 use crate::model::CollisionVolume;
 
 /// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
@@ -31,12 +31,9 @@ pub(crate) type NodeRef = i32;
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct Node {
-    /// The first two axes of the node's frame (orthonormal); the third is their cross product.
-    axes: [Vec3; 2],
-    /// The swept sphere volume's corner, side lengths and radius (see [`Ssv`]).
-    ssv_origin: Vec3,
-    ssv_lengths: [f64; 2],
-    ssv_radius: f64,
+    /// The swept sphere volume, on the node's frame: its first two axes (orthonormal), the third
+    /// being their cross product (the box is on the same frame).
+    pub ssv: CompactSsv,
     /// The swept sphere volume's size, which the descent rule compares at every step.
     ssv_size: f64,
     /// The two children.
@@ -52,10 +49,7 @@ impl Node {
     pub fn new(ssv: &Ssv, obb: &Obb) -> Node {
         debug_assert_eq!(ssv.axes, obb.axes);
         Node {
-            axes: [ssv.axes.column(0).into(), ssv.axes.column(1).into()],
-            ssv_origin: ssv.origin,
-            ssv_lengths: ssv.lengths,
-            ssv_radius: ssv.radius,
+            ssv: ssv.compact(),
             ssv_size: ssv.size(),
             obb_center: obb.center,
             obb_half: obb.half,
@@ -66,18 +60,13 @@ impl Node {
     /// The node's frame, from the two stored axes.
     #[inline(always)]
     pub fn frame(&self) -> Mat3 {
-        frame_from(&self.axes[0], &self.axes[1])
+        frame_from(&self.ssv.axes[0], &self.ssv.axes[1])
     }
 
     /// The swept sphere volume.
     #[inline(always)]
     pub fn ssv(&self) -> Ssv {
-        Ssv {
-            axes: self.frame(),
-            origin: self.ssv_origin,
-            lengths: self.ssv_lengths,
-            radius: self.ssv_radius,
-        }
+        self.ssv.full()
     }
 
     /// The size of the swept sphere volume (as [`BoundingVolume::size`] measures it).
@@ -95,16 +84,6 @@ impl Node {
             half: self.obb_half,
         }
     }
-}
-
-/// The frame with first axes `a0`, `a1` and third `a0 x a1`. The build stores its axes through this
-/// function, so the frame a volume was fitted on is recovered bit for bit.
-#[inline(always)]
-pub(crate) fn frame_from(a0: &Vec3, a1: &Vec3) -> Mat3 {
-    // Entry by entry (row-major arguments): built in place, where `from_columns` goes through a
-    // copy.
-    let c = a0.cross(a1);
-    Mat3::new(a0.x, a1.x, c.x, a0.y, a1.y, c.y, a0.z, a1.z, c.z)
 }
 
 /// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
@@ -167,6 +146,12 @@ impl Bvh {
         }
     }
 
+    /// The swept sphere volume of node `r` as [`CompactSsv`] (a leaf's computed).
+    #[inline(always)]
+    pub fn leaf_compact_ssv(&self, r: NodeRef) -> CompactSsv {
+        Ssv::triangle(&self.tri(leaf_triangle(r))).compact()
+    }
+
     /// The box of node `r`.
     #[inline(always)]
     pub fn obb(&self, r: NodeRef) -> Obb {
@@ -190,8 +175,9 @@ impl Bvh {
             let n = &self.nodes[r as usize];
             // The rectangle's centre: every point is within half its diagonal plus the radius,
             // half the size. Rounded up a little: the centre is computed.
-            let l = n.ssv_lengths;
-            let c = n.ssv_origin + n.axes[0] * (0.5 * l[0]) + n.axes[1] * (0.5 * l[1]);
+            let v = &n.ssv;
+            let l = v.lengths;
+            let c = v.origin + v.axes[0] * (0.5 * l[0]) + v.axes[1] * (0.5 * l[1]);
             (
                 c,
                 0.5 * n.ssv_size * (1.0 + 1e-12) + 4.0 * f64::EPSILON * c.norm(),

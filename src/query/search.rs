@@ -13,7 +13,7 @@ use super::front::{FrontPair, Motion};
 use super::queue::RadixQueue;
 use super::traversal::{LeafCache, NodePair, PairStack};
 use super::Stats;
-use crate::bounding_volume::{DistanceVolume, Ssv, Want};
+use crate::bounding_volume::{CompactSsv, DistanceVolume, Ssv, Want};
 use crate::bvh::{leaf_triangle, Bvh, NodeRef};
 use crate::error::Error;
 use crate::geometry::{tri_distance_below, Near, Tri};
@@ -141,8 +141,8 @@ pub(crate) struct ClosestSearch<'a> {
 /// Recently met leaves' volumes of each model (see [`LeafCache`]).
 #[derive(Default)]
 pub(crate) struct LeafVolumes {
-    first: LeafCache<Ssv>,
-    second: LeafCache<Ssv>,
+    first: LeafCache<CompactSsv>,
+    second: LeafCache<CompactSsv>,
 }
 
 impl<'a> ClosestSearch<'a> {
@@ -306,13 +306,16 @@ impl<'a> ClosestSearch<'a> {
     /// with a separating axis when it reaches `cutoff` (see [`expand`]).
     fn pair_bound(&mut self, a: NodeRef, b: NodeRef, cutoff: f64) -> Child {
         let (b1, b2) = (self.b1, self.b2);
-        let va = self.leaves.first.get(a, |r| b1.ssv(r));
-        let vb = self.leaves.second.get(b, |r| b2.ssv(r));
+        let va =
+            self.leaves
+                .first
+                .get_ref(a, |r| &b1.nodes[r as usize].ssv, |r| b1.leaf_compact_ssv(r));
+        let vb = full_volume(b2, &mut self.leaves.second, b);
         let want = Want {
             axes: self.front.is_some(),
             exact: true,
         };
-        let [(bound, axis)] = Ssv::bounds_against([&va], &vb, &self.rel, false, want, cutoff);
+        let [(bound, axis)] = Ssv::bounds_against([va], &vb, &self.rel, false, want, cutoff);
         (NodePair { a, b, bound }, axis)
     }
 
@@ -565,22 +568,40 @@ pub(crate) fn expand(
     } else {
         b1.nodes[a as usize].ssv_size() >= b2.nodes[b as usize].ssv_size()
     };
-    let (ssv1, ssv2) = (|r| b1.ssv(r), |r| b2.ssv(r));
-    // The fixed side is posed once, in the frame of the side being split.
+    // The fixed side is posed once, in the frame of the side being split; the children are read
+    // where they lie (no copies).
     let pair = |a, b, (bound, axis)| (NodePair { a, b, bound }, axis);
     Some(if split_first {
-        let fixed = leaves.second.get(b, ssv2);
+        let fixed = full_volume(b2, &mut leaves.second, b);
         let [c0, c1] = b1.nodes[a as usize].children;
-        let (v0, v1) = (leaves.first.get(c0, ssv1), leaves.first.get(c1, ssv1));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, false, want, cutoff);
+        let children = leaves.first.get_two(
+            [c0, c1],
+            |r| &b1.nodes[r as usize].ssv,
+            |r| b1.leaf_compact_ssv(r),
+        );
+        let [d0, d1] = Ssv::bounds_against(children, &fixed, rel, false, want, cutoff);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
-        let fixed = leaves.first.get(a, ssv1);
+        let fixed = full_volume(b1, &mut leaves.first, a);
         let [c0, c1] = b2.nodes[b as usize].children;
-        let (v0, v1) = (leaves.second.get(c0, ssv2), leaves.second.get(c1, ssv2));
-        let [d0, d1] = Ssv::bounds_against([&v0, &v1], &fixed, rel, true, want, cutoff);
+        let children = leaves.second.get_two(
+            [c0, c1],
+            |r| &b2.nodes[r as usize].ssv,
+            |r| b2.leaf_compact_ssv(r),
+        );
+        let [d0, d1] = Ssv::bounds_against(children, &fixed, rel, true, want, cutoff);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
+}
+
+/// The swept sphere volume of node `r` of `b`, with its normal; a leaf's through `cache`.
+#[inline(always)]
+fn full_volume(b: &Bvh, cache: &mut LeafCache<CompactSsv>, r: NodeRef) -> Ssv {
+    if r >= 0 {
+        b.nodes[r as usize].ssv.full()
+    } else {
+        cache.get(r, |r| b.leaf_compact_ssv(r)).full()
+    }
 }
 
 /// `v` scaled to length 1, or zero when it is zero (or too small or large to scale exactly).

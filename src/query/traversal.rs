@@ -74,6 +74,8 @@ pub(crate) struct LeafCache<V> {
     /// The leaf whose volume each slot holds; 0 (an inner node, never looked up): none.
     keys: [NodeRef; LEAF_SLOTS],
     volumes: [MaybeUninit<V>; LEAF_SLOTS],
+    /// For the first of two leaves asked for together that share a slot (see `get_two`).
+    spare: MaybeUninit<V>,
 }
 
 impl<V: Copy> Default for LeafCache<V> {
@@ -81,11 +83,74 @@ impl<V: Copy> Default for LeafCache<V> {
         LeafCache {
             keys: [0; LEAF_SLOTS],
             volumes: [const { MaybeUninit::uninit() }; LEAF_SLOTS],
+            spare: MaybeUninit::uninit(),
         }
     }
 }
 
 impl<V: Copy> LeafCache<V> {
+    /// The slot of leaf `r` (< 0), filled with its volume (`leaf(r)`) if it holds another.
+    #[inline(always)]
+    fn fill(&mut self, r: NodeRef, leaf: impl Fn(NodeRef) -> V) -> usize {
+        let i = leaf_triangle(r) % LEAF_SLOTS;
+        if self.keys[i] != r {
+            self.volumes[i] = MaybeUninit::new(leaf(r));
+            self.keys[i] = r;
+        }
+        i
+    }
+
+    /// The volume of node `r` by reference, as [`get_two`](LeafCache::get_two) gives it.
+    #[inline(always)]
+    pub fn get_ref<'x>(
+        &'x mut self,
+        r: NodeRef,
+        inner: impl Fn(NodeRef) -> &'x V,
+        leaf: impl Fn(NodeRef) -> V + Copy,
+    ) -> &'x V {
+        self.get_two([r, r], inner, leaf)[0]
+    }
+
+    /// The volumes of nodes `rs`, by reference (no copy): an inner node's as `inner` gives it, a
+    /// leaf's from the table (computed by `leaf` when not there).
+    #[inline(always)]
+    pub fn get_two<'x>(
+        &'x mut self,
+        rs: [NodeRef; 2],
+        inner: impl Fn(NodeRef) -> &'x V,
+        leaf: impl Fn(NodeRef) -> V + Copy,
+    ) -> [&'x V; 2] {
+        let [r0, r1] = rs;
+        let i0 = if r0 < 0 { self.fill(r0, leaf) } else { 0 };
+        let i1 = if r1 < 0 { self.fill(r1, leaf) } else { 0 };
+        // Two leaves of one slot (never two siblings: their triangles are consecutive): the
+        // second evicted the first, which goes to the spare.
+        let first_spare = r0 < 0 && r1 < 0 && r0 != r1 && i0 == i1;
+        if first_spare {
+            self.spare = MaybeUninit::new(leaf(r0));
+        }
+        let this: &'x Self = self;
+        let at = |r: NodeRef, i: usize| {
+            // Checked (a cheap, predictable branch) rather than trusted: a wrong slot must not
+            // read an uninitialised one.
+            assert_eq!(this.keys[i], r);
+            // SAFETY: a slot whose key is a leaf (< 0) holds that leaf's volume (set together in
+            // `fill`).
+            unsafe { this.volumes[i].assume_init_ref() }
+        };
+        [
+            if r0 >= 0 {
+                inner(r0)
+            } else if first_spare {
+                // SAFETY: set just above.
+                unsafe { this.spare.assume_init_ref() }
+            } else {
+                at(r0, i0)
+            },
+            if r1 >= 0 { inner(r1) } else { at(r1, i1) },
+        ]
+    }
+
     /// Node `r`'s volume, as `volume(r)` gives it; a leaf's from the table when it is there.
     #[inline(always)]
     pub fn get(&mut self, r: NodeRef, volume: impl Fn(NodeRef) -> V) -> V {
@@ -102,5 +167,49 @@ impl<V: Copy> LeafCache<V> {
             self.keys[i] = r;
             v
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// Whatever the slots, each node gets its own volume, and a leaf's is computed only when its
+    /// slot holds another: two leaves of one slot asked for together, repeated lookups, inner
+    /// nodes.
+    #[test]
+    fn leaf_cache_gives_each_node_its_volume() {
+        let inner_volumes: Vec<i64> = (0..200).map(|i| 1000 + i).collect();
+        let computed = Cell::new(0);
+        let leaf = |r: NodeRef| {
+            computed.set(computed.get() + 1);
+            -(r as i64)
+        };
+        let mut cache = LeafCache::<i64>::default();
+        let expect = |r: NodeRef| if r >= 0 { 1000 + r as i64 } else { -(r as i64) };
+        let pairs: [[NodeRef; 2]; 7] = [
+            [-1, -2],
+            [-1, -2],
+            [-1, -1 - LEAF_SLOTS as NodeRef],
+            [-1 - LEAF_SLOTS as NodeRef, -1],
+            [5, -3],
+            [-3, 7],
+            [-3, -3],
+        ];
+        let mut expected_computed = 0;
+        for (k, rs) in pairs.into_iter().enumerate() {
+            let before = computed.get();
+            let got = cache.get_two(rs, |r| &inner_volumes[r as usize], leaf);
+            assert_eq!([*got[0], *got[1]], rs.map(expect), "pair {k}");
+            expected_computed += [2, 0, 2, 2, 1, 0, 0][k];
+            assert_eq!(computed.get(), expected_computed, "pair {k} from {before}");
+        }
+        assert_eq!(*cache.get_ref(-2, |r| &inner_volumes[r as usize], leaf), 2);
+        assert_eq!(cache.get(-2, leaf), 2);
+        assert_eq!(
+            *cache.get_ref(9, |r| &inner_volumes[r as usize], leaf),
+            1009
+        );
     }
 }
