@@ -221,7 +221,6 @@ mod tests {
         let mut rng = Lcg(5);
         let a = blob(&mut rng, 12, 16);
         let b = blob(&mut rng, 9, 20);
-        let mut saved_total = 0;
         for (p1, p2) in poses(&mut rng, 25) {
             let r = distance(&a, &p1, &b, &p2, &DistanceOptions::exact()).unwrap();
             let m = minimal_bvtt(&a, &p1, &b, &p2, r.distance).unwrap();
