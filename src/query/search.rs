@@ -326,12 +326,16 @@ impl<'a> ClosestSearch<'a> {
             self.leaves
                 .first
                 .get_ref(a, |r| &b1.nodes[r as usize].ssv, |r| b1.leaf_compact_ssv(r));
-        let vb = full_volume(b2, &mut self.leaves.second, b);
+        let vb = self.leaves.second.get_ref(
+            b,
+            |r| &b2.nodes[r as usize].ssv,
+            |r| b2.leaf_compact_ssv(r),
+        );
         let want = Want {
             axes: self.front.is_some(),
             exact: true,
         };
-        let [(bound, axis)] = Ssv::bounds_against([va], &vb, &self.rel, false, want, cutoff);
+        let [(bound, axis)] = Ssv::bounds_against([va], vb, &self.rel, false, want, cutoff);
         (NodePair { a, b, bound }, axis)
     }
 
@@ -593,24 +597,30 @@ pub(crate) fn expand(
     // where they lie (no copies).
     let pair = |a, b, (bound, axis)| (NodePair { a, b, bound }, axis);
     Some(if split_first {
-        let fixed = full_volume(b2, &mut leaves.second, b);
+        let fixed =
+            leaves
+                .second
+                .get_ref(b, |r| &b2.nodes[r as usize].ssv, |r| b2.leaf_compact_ssv(r));
         let [c0, c1] = b1.nodes[a as usize].children;
         let children = leaves.first.get_two(
             [c0, c1],
             |r| &b1.nodes[r as usize].ssv,
             |r| b1.leaf_compact_ssv(r),
         );
-        let [d0, d1] = Ssv::bounds_against(children, &fixed, rel, false, want, cutoff);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, false, want, cutoff);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
-        let fixed = full_volume(b1, &mut leaves.first, a);
+        let fixed =
+            leaves
+                .first
+                .get_ref(a, |r| &b1.nodes[r as usize].ssv, |r| b1.leaf_compact_ssv(r));
         let [c0, c1] = b2.nodes[b as usize].children;
         let children = leaves.second.get_two(
             [c0, c1],
             |r| &b2.nodes[r as usize].ssv,
             |r| b2.leaf_compact_ssv(r),
         );
-        let [d0, d1] = Ssv::bounds_against(children, &fixed, rel, true, want, cutoff);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, true, want, cutoff);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
@@ -633,16 +643,6 @@ fn twin_leaf_pairs(b1: &Bvh, b2: &Bvh, p: &NodePair) -> Option<[NodePair; 2]> {
         twins(b1, p.a).map(|[c0, c1]| [pair(c0, p.b), pair(c1, p.b)])
     } else {
         None
-    }
-}
-
-/// The swept sphere volume of node `r` of `b`, with its normal; a leaf's through `cache`.
-#[inline(always)]
-fn full_volume(b: &Bvh, cache: &mut LeafCache<CompactSsv>, r: NodeRef) -> Ssv {
-    if r >= 0 {
-        b.nodes[r as usize].ssv.full()
-    } else {
-        cache.get(r, |r| b.leaf_compact_ssv(r)).full()
     }
 }
 
