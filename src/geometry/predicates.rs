@@ -292,11 +292,11 @@ impl PlaneFilter {
         (v, ERR3 * perm + UNDERFLOW)
     }
 
-    /// An upper bound on the length of the exact `(b - a) x (c - a)`, of which `n` is the float
-    /// value: each component is within a few roundings of its permanent.
+    /// A bound on how far the exact `(b - a) x (c - a)` lies from its float value `n` (each
+    /// component is within a few roundings of its permanent).
     #[inline]
-    pub(crate) fn normal_length_bound(&self) -> f64 {
-        self.n.norm() + 8.0 * f64::EPSILON * (self.nabs.x + self.nabs.y + self.nabs.z)
+    pub(crate) fn normal_error_bound(&self) -> f64 {
+        8.0 * f64::EPSILON * (self.nabs.x + self.nabs.y + self.nabs.z)
     }
 }
 

@@ -17,7 +17,7 @@ pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
     match tri_distance_below(a, b, f64::INFINITY) {
         Near::Closest(c) => c,
         // Nothing is at least an infinite distance apart.
-        Near::Apart { .. } => unreachable!(),
+        Near::Apart => unreachable!(),
     }
 }
 
@@ -26,15 +26,14 @@ pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
 pub(crate) enum Near {
     /// The distance and closest points, as [`tri_distance`] gives them.
     Closest(ClosestPoints),
-    /// The triangles are at least `bound` (no less than the cutoff) apart along the unit vector
-    /// `axis`, which points from the first triangle towards the second.
-    Apart { bound: f64, axis: Vec3 },
+    /// The triangles are at least the cutoff apart.
+    Apart,
 }
 
 /// As [`tri_distance`] below `cutoff`. At or beyond it, when one triangle lies strictly on one side
 /// of the other's plane and its nearest vertex there is at least `cutoff` from the plane, only
-/// that bound comes back, with the plane's normal as the axis: a search that prunes such pairs
-/// needs no more, and it is most of a triangle test's work saved.
+/// that comes back: a search that prunes such pairs needs no more, and it is most of a triangle
+/// test's work saved.
 pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
     if let Some(k) = kernel_rescale(m) {
@@ -46,34 +45,29 @@ pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64) -> Near {
                 p: r.p * inv,
                 q: r.q * inv,
             }),
-            Near::Apart { bound, axis } => Near::Apart {
-                bound: bound * inv,
-                axis,
-            },
+            Near::Apart => Near::Apart,
         };
     }
     distance_core(a, b, cutoff)
 }
 
-/// `Near::Apart` when the points of `sides` (relative to `plane`) are certainly on one side and
-/// at least `cutoff` from it; `toward`: the sign that turns the axis from the first triangle
-/// towards the second (1 when `plane` is the first triangle's).
+/// Whether the points of `sides` (relative to `plane`) are certainly on one side of it and at
+/// least `cutoff` from it.
 #[inline]
-fn apart(plane: &PlaneFilter, sides: &Sides, cutoff: f64, toward: f64) -> Option<Near> {
+fn apart(plane: &PlaneFilter, sides: &Sides, cutoff: f64) -> bool {
     let clearance = sides.clearance();
     if clearance <= 0.0 {
-        return None;
+        return false;
     }
-    // The exact heights are the exact orientations over the exact normal's length.
-    let bound = clearance / plane.normal_length_bound();
-    if bound < cutoff {
-        return None;
-    }
-    let side = if sides.o[0] > 0.0 { toward } else { -toward };
-    Some(Near::Apart {
-        bound,
-        axis: plane.n * (side / plane.n.norm()),
-    })
+    // The exact heights are the exact orientations over the exact normal's length, which is at
+    // most |n| + e: the test is clearance / cutoff >= |n| + e, without a root by
+    // (|n| + e)^2 <= (1 + 2^-40) |n|^2 + (1 + 2^40) e^2. The quotient, not the squares of the
+    // orientations (fourth powers of the coordinates), so that nothing overflows: a quotient too
+    // large to square is far beyond the cutoff.
+    const K: f64 = 1.0 / (1u64 << 40) as f64;
+    let e = plane.normal_error_bound();
+    let q = clearance / cutoff;
+    q * q >= (1.0 + K) * plane.n.norm_squared() + (1.0 + 1.0 / K) * (e * e)
 }
 
 /// Which candidate is closest so far.
@@ -95,8 +89,8 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     let ob = Sides::eval(&pa, b);
     let cut = cutoff < f64::INFINITY;
     if cut {
-        if let Some(far) = apart(&pa, &ob, cutoff, 1.0) {
-            return far;
+        if apart(&pa, &ob, cutoff) {
+            return Near::Apart;
         }
     }
     // Without a cutoff, a's sides of b's plane are needed only for distances when b is strictly
@@ -107,8 +101,8 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
         Sides::eval(&pb, a)
     };
     if cut {
-        if let Some(far) = apart(&pb, &oa, cutoff, -1.0) {
-            return far;
+        if apart(&pb, &oa, cutoff) {
+            return Near::Apart;
         }
     }
     Near::Closest(closest(a, b, &pa, &pb, oa, ob))
@@ -385,11 +379,10 @@ mod tests {
         }
     }
 
-    /// Below the cutoff the answer is the exact one; beyond it, either the exact one or a bound
-    /// between the cutoff and the distance, with a unit axis along which the triangles are that
-    /// far apart.
+    /// Below the cutoff the answer is the exact one; beyond it, either the exact one or the word
+    /// that the triangles are at least that far apart.
     #[test]
-    fn below_the_cutoff_exact_beyond_a_bound_with_its_axis() {
+    fn below_the_cutoff_exact_beyond_maybe_apart() {
         let mut rng = Lcg(31);
         let (mut beyond, mut apart) = (0, 0);
         for k in 0..20000 {
@@ -398,28 +391,33 @@ mod tests {
             let cutoff = exact.distance * (0.5 + rng.unit());
             match tri_distance_below(&a, &b, cutoff) {
                 Near::Closest(c) => assert_eq!(c, exact, "case {k}"),
-                Near::Apart { bound, axis } => {
+                Near::Apart => {
                     apart += 1;
-                    assert!(
-                        bound >= cutoff && bound <= exact.distance,
-                        "case {k}: {bound} {cutoff} {exact:?}"
-                    );
-                    assert!((axis.norm() - 1.0).abs() < 1e-12, "case {k}: {axis}");
-                    let lo_b = b.iter().map(|v| axis.dot(v)).fold(f64::INFINITY, f64::min);
-                    let hi_a = a
-                        .iter()
-                        .map(|v| axis.dot(v))
-                        .fold(f64::NEG_INFINITY, f64::max);
-                    let scale = a.iter().chain(&b).map(|v| v.amax()).fold(0.0, f64::max);
-                    assert!(
-                        lo_b - hi_a >= bound - 1e-13 * scale,
-                        "case {k}: {lo_b} {hi_a} {bound}"
-                    );
+                    assert!(exact.distance >= cutoff, "case {k}: {cutoff} {exact:?}");
                 }
             }
             beyond += usize::from(exact.distance >= cutoff);
         }
         // The planes do settle pairs (the point of the cutoff), most of the facing ones.
         assert!(apart > beyond / 3, "{apart} of {beyond}");
+    }
+
+    /// Pairs a hair beyond the cutoff: whether they are called apart or not, never one nearer.
+    #[test]
+    fn apart_is_never_called_below_the_cutoff() {
+        let mut rng = Lcg(37);
+        for k in 0..20000 {
+            let (a, b) = pair(&mut rng, k);
+            let exact = tri_distance(&a, &b).distance;
+            for f in [1.0 - 1e-15, 1.0, 1.0 + 1e-15, 1.0 + 1e-12] {
+                let cutoff = exact * f;
+                if let Near::Apart = tri_distance_below(&a, &b, cutoff) {
+                    assert!(
+                        exact >= cutoff * (1.0 - 1e-13),
+                        "case {k}: {exact} {cutoff}"
+                    );
+                }
+            }
+        }
     }
 }

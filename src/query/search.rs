@@ -179,8 +179,8 @@ impl<'a> ClosestSearch<'a> {
 
     /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance with the
     /// vector between its closest points (from `ta` to `tb`, in model 1's frame); or, for a pair at
-    /// least as far apart as the closest yet, possibly a lower bound on its distance with a vector
-    /// as long along which the triangles are that far apart.
+    /// least as far apart as the closest yet when no front is recorded, possibly that distance with
+    /// a zero vector.
     fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
         let t2 = self.b2.tri(tb);
@@ -198,7 +198,7 @@ impl<'a> ClosestSearch<'a> {
         };
         let c = match tri_distance_below(&self.b1.tri(ta), &moved, cutoff) {
             Near::Closest(c) => c,
-            Near::Apart { bound, axis } => return (bound, axis * bound),
+            Near::Apart => return (cutoff, Vec3::zeros()),
         };
         if c.distance < self.best.d {
             self.best = Best {
