@@ -88,10 +88,8 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     // the other side's values are needed only for distances, without error bounds.
     let ob = Sides::eval(&pa, b);
     let cut = cutoff < f64::INFINITY;
-    if cut {
-        if apart(&pa, &ob, cutoff) {
-            return Near::Apart;
-        }
+    if cut && apart(&pa, &ob, cutoff) {
+        return Near::Apart;
     }
     // Without a cutoff, a's sides of b's plane are needed only for distances when b is strictly
     // on one side of a's plane: then no error bounds.
@@ -100,10 +98,8 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
     } else {
         Sides::eval(&pb, a)
     };
-    if cut {
-        if apart(&pb, &oa, cutoff) {
-            return Near::Apart;
-        }
+    if cut && apart(&pb, &oa, cutoff) {
+        return Near::Apart;
     }
     Near::Closest(closest(a, b, &pa, &pb, oa, ob))
 }
