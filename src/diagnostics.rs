@@ -8,7 +8,7 @@
 //! might hide a closer pair) and could skip every other. Those nodes form the *minimal BVTT*; how far
 //! a real query's work exceeds it measures how well its search order and initial guess work.
 
-use crate::bounding_volume::Want;
+use crate::bounding_volume::{Ssv, Want};
 use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
@@ -67,6 +67,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
     let root = root_pair(b1, b2, rel, f64::INFINITY);
     let mut stack = vec![root];
     let mut leaves = LeafVolumes::default();
+    let slack = Ssv::slack_for(b1.scale, b2.scale, rel);
     while let Some(p) = stack.pop() {
         // Written so that a NaN bound is not descended.
         let below = p.bound < d;
@@ -74,7 +75,16 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
             continue;
         }
         out.nodes_below += 1;
-        match expand(b1, b2, rel, &p, f64::INFINITY, Want::EXACT, &mut leaves) {
+        match expand(
+            b1,
+            b2,
+            rel,
+            slack,
+            &p,
+            f64::INFINITY,
+            Want::EXACT,
+            &mut leaves,
+        ) {
             None => out.leaf_pairs_below += 1,
             Some(children) => {
                 out.bound_tests += 2;

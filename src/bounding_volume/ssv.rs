@@ -96,7 +96,7 @@ impl CompactSsv {
 
     /// As [`Ssv::scale`].
     #[inline(always)]
-    fn scale(&self) -> f64 {
+    pub(crate) fn scale(&self) -> f64 {
         self.origin.x.abs()
             + self.origin.y.abs()
             + self.origin.z.abs()
@@ -300,7 +300,7 @@ impl Ssv {
 
     /// This volume's part of the magnitudes a bound's rounding is relative to (see `slack`).
     #[inline(always)]
-    fn scale(&self) -> f64 {
+    pub(crate) fn scale(&self) -> f64 {
         self.origin.x.abs()
             + self.origin.y.abs()
             + self.origin.z.abs()
@@ -318,6 +318,9 @@ impl Ssv {
     /// bound apart; not normalized, and zero when there is none to give. Front tracking bounds how
     /// much the bound can shrink from how far the points move along it. Without `want.exact`, a
     /// bound below `cutoff` may be any lower bound of the distance (see [`Want`]).
+    ///
+    /// `slack`: the rounding allowance, at least [`Ssv::slack_for`] the volumes' scales (a
+    /// search takes one for all the pairs of its two models, see [`Ssv::slack_for`]).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
         a: [&CompactSsv; N],
@@ -326,13 +329,12 @@ impl Ssv {
         inverse: bool,
         want: Want,
         cutoff: f64,
+        slack: f64,
     ) -> [(f64, Vec3); N] {
         let moved = b.posed(rel, inverse);
-        let fixed_scale = b.scale() + rel.trans.x.abs() + rel.trans.y.abs() + rel.trans.z.abs();
         // A plain loop: `array::map` with this body is not inlined, and costs 8% of a query.
         let mut out = [(0.0, Vec3::zeros()); N];
         for (out, a) in out.iter_mut().zip(a) {
-            let slack = BOUND_SLACK * (fixed_scale + a.scale());
             // Cores within both radii make the bound 0 however close they are: the first pair of
             // points found that near settles it.
             let radii = a.radius + moved.radius;
@@ -402,8 +404,15 @@ impl Ssv {
     /// Rounding allowance of a bound on `a` and `b` posed by `rel`.
     #[inline(always)]
     fn slack(a: &Ssv, b: &Ssv, rel: &RelPose) -> f64 {
+        Ssv::slack_for(a.scale(), b.scale(), rel)
+    }
+
+    /// Rounding allowance of a bound on volumes of scales (see `scale`) at most `scale_a` and
+    /// `scale_b`, the second posed by `rel` (or the first by its inverse).
+    #[inline(always)]
+    pub(crate) fn slack_for(scale_a: f64, scale_b: f64, rel: &RelPose) -> f64 {
         let t = rel.trans;
-        BOUND_SLACK * (a.scale() + b.scale() + t.x.abs() + t.y.abs() + t.z.abs())
+        BOUND_SLACK * (scale_a + scale_b + t.x.abs() + t.y.abs() + t.z.abs())
     }
 
     /// The centre of the core and the radius of a ball around the whole volume.
@@ -423,15 +432,8 @@ impl DistanceVolume for Ssv {
 
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
-        Ssv::bounds_against(
-            [&a.compact()],
-            &b.compact(),
-            rel,
-            false,
-            Want::EXACT,
-            cutoff,
-        )[0]
-        .0
+        let (ca, cb, slack) = (a.compact(), b.compact(), Ssv::slack(a, b, rel));
+        Ssv::bounds_against([&ca], &cb, rel, false, Want::EXACT, cutoff, slack)[0].0
     }
 }
 
@@ -621,9 +623,11 @@ mod tests {
             let cutoff = [f64::INFINITY, 0.3, 1.0][k % 3];
             // b posed by rel against a, then a posed by rel's inverse against b.
             let (ca, cb) = (a.compact(), b.compact());
-            let [(bound, axis)] = Ssv::bounds_against([&ca], &cb, &rel, false, Want::AXES, cutoff);
+            let slack = Ssv::slack(&a, &b, &rel);
+            let [(bound, axis)] =
+                Ssv::bounds_against([&ca], &cb, &rel, false, Want::AXES, cutoff, slack);
             let [(bound_inv, axis_inv)] =
-                Ssv::bounds_against([&cb], &ca, &rel, true, Want::AXES, cutoff);
+                Ssv::bounds_against([&cb], &ca, &rel, true, Want::AXES, cutoff, slack);
             for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
                 cases += 1;
                 if axis == Vec3::zeros() {

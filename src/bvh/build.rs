@@ -97,12 +97,14 @@ impl Bvh {
         drop(keys);
 
         let (verts, faces) = share_vertices(&corners)?;
+        let scale = Bvh::scale_bound(&nodes, &verts);
         Ok(Bvh {
             nodes,
             verts,
             faces,
             ids,
             collision,
+            scale,
         })
     }
 }
@@ -455,6 +457,13 @@ mod tests {
             let mut tris = Vec::new();
             rec(bvh, r, &mut tris);
             let (ssv, obb) = (bvh.ssv(r), bvh.obb(r));
+            // The model-wide bound on the volumes' scales (their rounding allowance) holds.
+            assert!(
+                ssv.scale() <= bvh.scale,
+                "node {r}: {} {}",
+                ssv.scale(),
+                bvh.scale
+            );
             for t in tris {
                 for v in &bvh.tri(t) {
                     let eps = 1e-9 * (1.0 + v.norm());

@@ -97,9 +97,22 @@ pub(crate) struct Bvh {
     pub ids: Vec<i32>,
     /// Which volume this model offers the collision query.
     pub collision: CollisionVolume,
+    /// A bound on the scale of every node's swept sphere volume, a leaf's included (the magnitudes
+    /// a bound's rounding is relative to, see [`Ssv::slack_for`]): a search takes one rounding
+    /// allowance for all its pairs rather than one per pair.
+    pub scale: f64,
 }
 
 impl Bvh {
+    /// The bound kept in `scale`: the largest over the inner nodes, and five times the largest
+    /// coordinate sum over the vertices (a leaf's corner is a vertex, its sides are at most twice
+    /// the triangle's diameter, which is at most twice the largest vertex norm).
+    fn scale_bound(nodes: &[Node], verts: &[Vec3]) -> f64 {
+        let inner = nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max);
+        let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
+        inner.max(5.0 * vertex)
+    }
+
     /// Bytes held by the hierarchy.
     pub fn memory_usage(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()

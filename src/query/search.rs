@@ -125,6 +125,8 @@ pub(crate) struct ClosestSearch<'a> {
     b1: &'a Bvh,
     b2: &'a Bvh,
     rel: RelPose,
+    /// The bounds' rounding allowance, one for every pair of the two models.
+    slack: f64,
     pub best: Best,
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
@@ -159,6 +161,7 @@ impl<'a> ClosestSearch<'a> {
             b1,
             b2,
             rel,
+            slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
             best: Best {
                 d: f64::INFINITY,
                 p: Vec3::zeros(),
@@ -231,7 +234,8 @@ impl<'a> ClosestSearch<'a> {
             axes: self.front.is_some(),
             exact,
         };
-        match expand(self.b1, self.b2, &self.rel, p, cutoff, want, self.leaves) {
+        let (rel, slack) = (&self.rel, self.slack);
+        match expand(self.b1, self.b2, rel, slack, p, cutoff, want, self.leaves) {
             Some([x, y]) => {
                 self.stats.bv_tests += 2;
                 Some(if y.0.bound < x.0.bound {
@@ -335,7 +339,8 @@ impl<'a> ClosestSearch<'a> {
             axes: self.front.is_some(),
             exact: true,
         };
-        let [(bound, axis)] = Ssv::bounds_against([va], vb, &self.rel, false, want, cutoff);
+        let [(bound, axis)] =
+            Ssv::bounds_against([va], vb, &self.rel, false, want, cutoff, self.slack);
         (NodePair { a, b, bound }, axis)
     }
 
@@ -573,10 +578,12 @@ pub(crate) type Child = (NodePair, Vec3);
 /// model 2's when model 1's is, else the one with the larger volume (model 1's on a tie). Leaves'
 /// volumes (computed from their triangles) go through `leaves`.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn expand(
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
+    slack: f64,
     p: &NodePair,
     cutoff: f64,
     want: Want,
@@ -607,7 +614,7 @@ pub(crate) fn expand(
             |r| &b1.nodes[r as usize].ssv,
             |r| b1.leaf_compact_ssv(r),
         );
-        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, false, want, cutoff);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, false, want, cutoff, slack);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
         let fixed =
@@ -620,7 +627,7 @@ pub(crate) fn expand(
             |r| &b2.nodes[r as usize].ssv,
             |r| b2.leaf_compact_ssv(r),
         );
-        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, true, want, cutoff);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, true, want, cutoff, slack);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
