@@ -577,7 +577,7 @@ pub(crate) type Child = (NodePair, Vec3);
 /// `None` for a pair of leaves. The descent rule: split model 1's node when model 2's is a leaf,
 /// model 2's when model 1's is, else the one with the larger volume (model 1's on a tie). Leaves'
 /// volumes (computed from their triangles) go through `leaves`.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn expand(
     b1: &Bvh,
