@@ -14,10 +14,10 @@ use crate::math::Vec3;
 /// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
 /// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
-    match tri_distance_below(a, b, f64::INFINITY) {
+    match tri_distance_below(a, b, f64::INFINITY, Plane::A) {
         Near::Closest(c) => c,
         // Nothing is at least an infinite distance apart.
-        Near::Apart => unreachable!(),
+        Near::Apart(_) => unreachable!(),
     }
 }
 
@@ -26,29 +26,37 @@ pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
 pub(crate) enum Near {
     /// The distance and closest points, as [`tri_distance`] gives them.
     Closest(ClosestPoints),
-    /// The triangles are at least the cutoff apart.
-    Apart,
+    /// The triangles are at least the cutoff apart, as the plane of this one showed.
+    Apart(Plane),
+}
+
+/// One of the two triangles of [`tri_distance_below`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Plane {
+    A,
+    B,
 }
 
 /// As [`tri_distance`] below `cutoff`. At or beyond it, when one triangle lies strictly on one side
 /// of the other's plane and its nearest vertex there is at least `cutoff` from the plane, only
 /// that comes back: a search that prunes such pairs needs no more, and it is most of a triangle
-/// test's work saved.
-pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64) -> Near {
+/// test's work saved. `first`: the triangle whose plane is tried first (where the last pair was
+/// settled, say: a search meets the same configuration again and again).
+pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64, first: Plane) -> Near {
     let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
     if let Some(k) = kernel_rescale(m) {
         // Huge or tiny coordinates: work at unit scale (exactly, by a power of two).
         let (s, inv) = (pow2(k), pow2(-k));
-        return match distance_core(&a.map(|v| v * s), &b.map(|v| v * s), cutoff * s) {
+        return match distance_core(&a.map(|v| v * s), &b.map(|v| v * s), cutoff * s, first) {
             Near::Closest(r) => Near::Closest(ClosestPoints {
                 distance: r.distance * inv,
                 p: r.p * inv,
                 q: r.q * inv,
             }),
-            Near::Apart => Near::Apart,
+            far => far,
         };
     }
-    distance_core(a, b, cutoff)
+    distance_core(a, b, cutoff, first)
 }
 
 /// Whether the points of `sides` (relative to `plane`) are certainly on one side of it and at
@@ -81,15 +89,27 @@ enum Feature {
     VertexOfA(usize, Vec3, f64),
 }
 
-fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
-    let pa = PlaneFilter::new(&a[0], &a[1], &a[2]);
+fn distance_core(a: &Tri, b: &Tri, cutoff: f64, first: Plane) -> Near {
+    let cut = cutoff < f64::INFINITY;
     let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
+    if cut && first == Plane::B {
+        let oa = Sides::eval(&pb, a);
+        if apart(&pb, &oa, cutoff) {
+            return Near::Apart(Plane::B);
+        }
+        let pa = PlaneFilter::new(&a[0], &a[1], &a[2]);
+        let ob = Sides::eval(&pa, b);
+        if apart(&pa, &ob, cutoff) {
+            return Near::Apart(Plane::A);
+        }
+        return Near::Closest(closest(a, b, &pa, &pb, oa, ob));
+    }
+    let pa = PlaneFilter::new(&a[0], &a[1], &a[2]);
     // Either triangle strictly on one side of the other's plane is the common, cheap case; then
     // the other side's values are needed only for distances, without error bounds.
     let ob = Sides::eval(&pa, b);
-    let cut = cutoff < f64::INFINITY;
     if cut && apart(&pa, &ob, cutoff) {
-        return Near::Apart;
+        return Near::Apart(Plane::A);
     }
     // Without a cutoff, a's sides of b's plane are needed only for distances when b is strictly
     // on one side of a's plane: then no error bounds.
@@ -99,7 +119,7 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64) -> Near {
         Sides::eval(&pb, a)
     };
     if cut && apart(&pb, &oa, cutoff) {
-        return Near::Apart;
+        return Near::Apart(Plane::B);
     }
     Near::Closest(closest(a, b, &pa, &pb, oa, ob))
 }
@@ -385,9 +405,10 @@ mod tests {
             let (a, b) = pair(&mut rng, k);
             let exact = tri_distance(&a, &b);
             let cutoff = exact.distance * (0.5 + rng.unit());
-            match tri_distance_below(&a, &b, cutoff) {
+            let first = [Plane::A, Plane::B][k % 2];
+            match tri_distance_below(&a, &b, cutoff, first) {
                 Near::Closest(c) => assert_eq!(c, exact, "case {k}"),
-                Near::Apart => {
+                Near::Apart(_) => {
                     apart += 1;
                     assert!(exact.distance >= cutoff, "case {k}: {cutoff} {exact:?}");
                 }
@@ -407,7 +428,8 @@ mod tests {
             let exact = tri_distance(&a, &b).distance;
             for f in [1.0 - 1e-15, 1.0, 1.0 + 1e-15, 1.0 + 1e-12] {
                 let cutoff = exact * f;
-                if let Near::Apart = tri_distance_below(&a, &b, cutoff) {
+                let first = [Plane::A, Plane::B][k % 2];
+                if let Near::Apart(_) = tri_distance_below(&a, &b, cutoff, first) {
                     assert!(
                         exact >= cutoff * (1.0 - 1e-13),
                         "case {k}: {exact} {cutoff}"

@@ -16,7 +16,7 @@ use super::Stats;
 use crate::bounding_volume::{CompactSsv, DistanceVolume, Ssv, Want};
 use crate::bvh::{leaf_triangle, Bvh, NodeRef};
 use crate::error::Error;
-use crate::geometry::{tri_distance_below, Near, Tri};
+use crate::geometry::{tri_distance_below, Near, Plane, Tri};
 use crate::math::{RelPose, Vec3};
 use std::cell::RefCell;
 use std::collections::VecDeque;
@@ -127,6 +127,8 @@ pub(crate) struct ClosestSearch<'a> {
     rel: RelPose,
     /// The bounds' rounding allowance, one for every pair of the two models.
     slack: f64,
+    /// The triangle whose plane last showed a pair apart, to be tried first next time.
+    plane_first: Plane,
     pub best: Best,
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
@@ -162,6 +164,7 @@ impl<'a> ClosestSearch<'a> {
             b2,
             rel,
             slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
+            plane_first: Plane::A,
             best: Best {
                 d: f64::INFINITY,
                 p: Vec3::zeros(),
@@ -199,9 +202,12 @@ impl<'a> ClosestSearch<'a> {
         } else {
             self.best.d
         };
-        let c = match tri_distance_below(&self.b1.tri(ta), &moved, cutoff) {
+        let c = match tri_distance_below(&self.b1.tri(ta), &moved, cutoff, self.plane_first) {
             Near::Closest(c) => c,
-            Near::Apart => return (cutoff, Vec3::zeros()),
+            Near::Apart(plane) => {
+                self.plane_first = plane;
+                return (cutoff, Vec3::zeros());
+            }
         };
         if c.distance < self.best.d {
             self.best = Best {
