@@ -17,16 +17,18 @@ pub(crate) struct NodePair {
 /// most as long as both trees are deep.
 const STACK_CAPACITY: usize = 2 * MAX_DEPTH + 4;
 
-/// A stack on the call stack (no heap allocation per query).
+/// A stack on the call stack (no heap allocation per query), left uninitialised: a priority
+/// search starts one for every pair its queue overflows with (thousands per query on the nested
+/// shells), and zeroing it cost more than its use.
 pub(crate) struct PairStack {
-    items: [NodePair; STACK_CAPACITY],
+    items: [MaybeUninit<NodePair>; STACK_CAPACITY],
     len: usize,
 }
 
 impl PairStack {
     pub fn new() -> Self {
         PairStack {
-            items: [NodePair::default(); STACK_CAPACITY],
+            items: [const { MaybeUninit::uninit() }; STACK_CAPACITY],
             len: 0,
         }
     }
@@ -35,7 +37,7 @@ impl PairStack {
     pub fn push(&mut self, p: NodePair) {
         // The build bounds the depth, so this cannot overflow; checked indexing keeps it memory safe
         // even if that reasoning were wrong (a panic, caught at the C boundary).
-        self.items[self.len] = p;
+        self.items[self.len] = MaybeUninit::new(p);
         self.len += 1;
     }
 
@@ -45,7 +47,8 @@ impl PairStack {
             None
         } else {
             self.len -= 1;
-            Some(self.items[self.len])
+            // SAFETY: the items below `len` were written by `push`.
+            Some(unsafe { self.items[self.len].assume_init() })
         }
     }
 }
