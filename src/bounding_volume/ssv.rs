@@ -97,11 +97,7 @@ impl CompactSsv {
     /// As [`Ssv::scale`].
     #[inline(always)]
     pub(crate) fn scale(&self) -> f64 {
-        self.origin.x.abs()
-            + self.origin.y.abs()
-            + self.origin.z.abs()
-            + self.lengths[0]
-            + self.lengths[1]
+        scale_of(&self.origin, self.lengths)
     }
 }
 
@@ -301,11 +297,7 @@ impl Ssv {
     /// This volume's part of the magnitudes a bound's rounding is relative to (see `slack`).
     #[inline(always)]
     pub(crate) fn scale(&self) -> f64 {
-        self.origin.x.abs()
-            + self.origin.y.abs()
-            + self.origin.z.abs()
-            + self.lengths[0]
-            + self.lengths[1]
+        scale_of(&self.origin, self.lengths)
     }
 
     /// The bounds of several volumes `a` against one volume `b` posed by `rel` in their frame, as
@@ -319,8 +311,8 @@ impl Ssv {
     /// much the bound can shrink from how far the points move along it. Without `want.exact`, a
     /// bound below `cutoff` may be any lower bound of the distance (see [`Want`]).
     ///
-    /// `slack`: the rounding allowance, at least [`Ssv::slack_for`] the volumes' scales (a
-    /// search takes one for all the pairs of its two models, see [`Ssv::slack_for`]).
+    /// `slack`: the rounding allowance, at least [`Ssv::slack_for`] of the volumes' scales (a
+    /// search takes one for all the pairs of its two models).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
         a: [&CompactSsv; N],
@@ -368,6 +360,12 @@ fn kind_of(lengths: [f64; 2]) -> SsvKind {
     } else {
         SsvKind::Point
     }
+}
+
+/// The scale (see [`Ssv::scale`]) of a core with this corner and these sides.
+#[inline(always)]
+fn scale_of(origin: &Vec3, lengths: [f64; 2]) -> f64 {
+    origin.x.abs() + origin.y.abs() + origin.z.abs() + lengths[0] + lengths[1]
 }
 
 /// How far `x` is outside `[lo, hi]`.

@@ -159,7 +159,7 @@ impl Bvh {
         }
     }
 
-    /// The swept sphere volume of node `r` as [`CompactSsv`] (a leaf's computed).
+    /// The swept sphere volume of leaf `r`, computed from its triangle, as [`CompactSsv`].
     #[inline(always)]
     pub fn leaf_compact_ssv(&self, r: NodeRef) -> CompactSsv {
         Ssv::triangle(&self.tri(leaf_triangle(r))).compact()

@@ -224,10 +224,10 @@ impl<'a> ClosestSearch<'a> {
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
     /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]),
     /// nearer first.
-    #[inline]
     ///
     /// Without `exact`, a leaf against a node of two leaves goes straight to its two triangle
     /// pairs, as if a leaf pair (see [`depth_first`](ClosestSearch::depth_first)).
+    #[inline]
     fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
         if !exact {
             if let Some([x, y]) = twin_leaf_pairs(self.b1, self.b2, p) {
@@ -332,15 +332,8 @@ impl<'a> ClosestSearch<'a> {
     /// with a separating axis when it reaches `cutoff` (see [`expand`]).
     fn pair_bound(&mut self, a: NodeRef, b: NodeRef, cutoff: f64) -> Child {
         let (b1, b2) = (self.b1, self.b2);
-        let va =
-            self.leaves
-                .first
-                .get_ref(a, |r| &b1.nodes[r as usize].ssv, |r| b1.leaf_compact_ssv(r));
-        let vb = self.leaves.second.get_ref(
-            b,
-            |r| &b2.nodes[r as usize].ssv,
-            |r| b2.leaf_compact_ssv(r),
-        );
+        let va = volume(b1, &mut self.leaves.first, a);
+        let vb = volume(b2, &mut self.leaves.second, b);
         let want = Want {
             axes: self.front.is_some(),
             exact: true,
@@ -610,32 +603,35 @@ pub(crate) fn expand(
     // where they lie (no copies).
     let pair = |a, b, (bound, axis)| (NodePair { a, b, bound }, axis);
     Some(if split_first {
-        let fixed =
-            leaves
-                .second
-                .get_ref(b, |r| &b2.nodes[r as usize].ssv, |r| b2.leaf_compact_ssv(r));
+        let fixed = volume(b2, &mut leaves.second, b);
         let [c0, c1] = b1.nodes[a as usize].children;
-        let children = leaves.first.get_two(
-            [c0, c1],
-            |r| &b1.nodes[r as usize].ssv,
-            |r| b1.leaf_compact_ssv(r),
-        );
+        let children = volumes(b1, &mut leaves.first, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against(children, fixed, rel, false, want, cutoff, slack);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
-        let fixed =
-            leaves
-                .first
-                .get_ref(a, |r| &b1.nodes[r as usize].ssv, |r| b1.leaf_compact_ssv(r));
+        let fixed = volume(b1, &mut leaves.first, a);
         let [c0, c1] = b2.nodes[b as usize].children;
-        let children = leaves.second.get_two(
-            [c0, c1],
-            |r| &b2.nodes[r as usize].ssv,
-            |r| b2.leaf_compact_ssv(r),
-        );
+        let children = volumes(b2, &mut leaves.second, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against(children, fixed, rel, true, want, cutoff, slack);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
+}
+
+/// The volume of node `r` of `b`, by reference: an inner node's where it lies, a leaf's through
+/// `cache`.
+#[inline(always)]
+fn volume<'x>(b: &'x Bvh, cache: &'x mut LeafCache<CompactSsv>, r: NodeRef) -> &'x CompactSsv {
+    cache.get_ref(r, |r| &b.nodes[r as usize].ssv, |r| b.leaf_compact_ssv(r))
+}
+
+/// As [`volume`], for two nodes at once.
+#[inline(always)]
+fn volumes<'x>(
+    b: &'x Bvh,
+    cache: &'x mut LeafCache<CompactSsv>,
+    rs: [NodeRef; 2],
+) -> [&'x CompactSsv; 2] {
+    cache.get_two(rs, |r| &b.nodes[r as usize].ssv, |r| b.leaf_compact_ssv(r))
 }
 
 /// The two leaf pairs under `p`, when it pairs a leaf with a node of two leaves, with `p`'s bound
