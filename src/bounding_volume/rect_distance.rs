@@ -136,7 +136,16 @@ pub(crate) fn rect_distance(
         o: ra,
         l: lb,
     };
-    (edges(&b, &a, best).sqrt(), Vec3::zeros())
+    if exact {
+        return (edges::<true>(&b, &a, best).sqrt(), Vec3::zeros());
+    }
+    // Loose: whether some edge comes nearer than the cutoff is all that counts; if one does, the
+    // larger box gap bounds the distance.
+    if edges::<false>(&b, &a, best) < cut2 {
+        (most(gap_a2, gap_b2).sqrt(), Vec3::zeros())
+    } else {
+        (cutoff, Vec3::zeros())
+    }
 }
 
 /// A rectangle's corners `p` (`p[0]`, `+ u`, `+ v`, `+ u + v`) in the other's frame, their offsets
@@ -153,17 +162,38 @@ struct Corners {
 /// Apart from the rest of the kernel (which rarely gets here), so that its registers do not
 /// weigh on the common paths.
 #[inline(never)]
-fn edges(b: &Corners, a: &Corners, mut best: f64) -> f64 {
+fn edges<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
     // The edges of b against a, then those of a against b (unrolled: each call site keeps its
-    // own branch history).
-    best = edge_min(&b.p[0], &b.u, &b.o[0], &b.o[1], b.l, best);
-    best = edge_min(&b.p[2], &b.u, &b.o[2], &b.o[3], b.l, best);
-    best = edge_min(&b.p[0], &b.v, &b.o[0], &b.o[2], b.l, best);
-    best = edge_min(&b.p[1], &b.v, &b.o[1], &b.o[3], b.l, best);
-    best = edge_min(&a.p[0], &a.u, &a.o[0], &a.o[1], a.l, best);
-    best = edge_min(&a.p[2], &a.u, &a.o[2], &a.o[3], a.l, best);
-    best = edge_min(&a.p[0], &a.v, &a.o[0], &a.o[2], a.l, best);
-    edge_min(&a.p[1], &a.v, &a.o[1], &a.o[3], a.l, best)
+    // own branch history). Without `ALL`, it stops at the first edge below `best`.
+    let mut m = edge_min(&b.p[0], &b.u, &b.o[0], &b.o[1], b.l, best);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&b.p[2], &b.u, &b.o[2], &b.o[3], b.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&b.p[0], &b.v, &b.o[0], &b.o[2], b.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&b.p[1], &b.v, &b.o[1], &b.o[3], b.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&a.p[0], &a.u, &a.o[0], &a.o[1], a.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&a.p[2], &a.u, &a.o[2], &a.o[3], a.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    m = edge_min(&a.p[0], &a.v, &a.o[0], &a.o[2], a.l, m);
+    if !ALL && m < best {
+        return m;
+    }
+    edge_min(&a.p[1], &a.v, &a.o[1], &a.o[3], a.l, m)
 }
 
 /// The gap between the rectangle `[0, l[0]] x [0, l[1]] x {0}` and the box around four points, as
