@@ -129,6 +129,9 @@ pub(crate) struct ClosestSearch<'a> {
     slack: f64,
     /// The triangle whose plane last showed a pair apart, to be tried first next time.
     plane_first: Plane,
+    /// The model 2 triangle last tested, posed in model 1's frame, and its index (`usize::MAX`:
+    /// none yet): consecutive tests often share it (a leaf against a node of two leaves).
+    posed: (usize, Tri),
     pub best: Best,
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
@@ -165,6 +168,7 @@ impl<'a> ClosestSearch<'a> {
             rel,
             slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
             plane_first: Plane::A,
+            posed: (usize::MAX, [Vec3::zeros(); 3]),
             best: Best {
                 d: f64::INFINITY,
                 p: Vec3::zeros(),
@@ -189,12 +193,18 @@ impl<'a> ClosestSearch<'a> {
     /// a zero vector.
     fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
-        let t2 = self.b2.tri(tb);
-        let moved: Tri = [
-            self.rel.apply(&t2[0]),
-            self.rel.apply(&t2[1]),
-            self.rel.apply(&t2[2]),
-        ];
+        if self.posed.0 != tb {
+            let t2 = self.b2.tri(tb);
+            self.posed = (
+                tb,
+                [
+                    self.rel.apply(&t2[0]),
+                    self.rel.apply(&t2[1]),
+                    self.rel.apply(&t2[2]),
+                ],
+            );
+        }
+        let moved = &self.posed.1;
         // A front keeps the pair's bound for the next query: the exact distance is worth its cost
         // there (measured on the tumbling tori).
         let cutoff = if self.front.is_some() {
@@ -202,7 +212,7 @@ impl<'a> ClosestSearch<'a> {
         } else {
             self.best.d
         };
-        let c = match tri_distance_below(&self.b1.tri(ta), &moved, cutoff, self.plane_first) {
+        let c = match tri_distance_below(&self.b1.tri(ta), moved, cutoff, self.plane_first) {
             Near::Closest(c) => c,
             Near::Apart(plane) => {
                 self.plane_first = plane;
