@@ -489,3 +489,38 @@ fn queries_validate_their_arguments() {
         0.0
     );
 }
+
+#[test]
+fn tiny_and_huge_models_answer_as_rescaled() {
+    // Rescaling by a power of two is exact, so the distance scales with the models; at the extremes
+    // the triangle tests must rescale themselves (their intermediate values reach fourth powers).
+    let mut rng = Rng::new(91);
+    let mut apart = 0;
+    let (a, b) = (
+        Mesh::soup(&mut rng, 60, 1.0, 0.3),
+        Mesh::soup(&mut rng, 60, 1.0, 0.3),
+    );
+    for k in 0..20 {
+        let (rot, t) = (rng.rotation(), rng.point(1.5));
+        let pose = |s: f64| Pose::new(rot, [(t[0] + 2.5) * s, t[1] * s, t[2] * s]);
+        let here = Pose::identity();
+        let exact = DistanceOptions::exact();
+        let unit = distance(&a.model(), &here, &b.model(), &pose(1.0), &exact).unwrap();
+        apart += usize::from(unit.distance > 0.0);
+        for e in [-300, -230, -150, 100, 300] {
+            let s = 2f64.powi(e);
+            let scaled = |m: &Mesh| Mesh {
+                tris: m.tris.iter().map(|t| t.map(|p| p.map(|x| x * s))).collect(),
+            };
+            let (sa, sb) = (scaled(&a).model(), scaled(&b).model());
+            let r = distance(&sa, &here, &sb, &pose(s), &exact).unwrap();
+            assert!(
+                (r.distance / s - unit.distance).abs() <= 1e-12 * unit.distance,
+                "pose {k}, scale 2^{e}: {} vs {}",
+                r.distance / s,
+                unit.distance
+            );
+        }
+    }
+    assert!(apart >= 10, "{apart}");
+}

@@ -6,7 +6,7 @@ use super::NodeRef;
 use super::{Bvh, Node};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
-use crate::geometry::Tri;
+use crate::geometry::{Tri, RESCALE_LO};
 use crate::math::{frame_from, Mat3, Vec3};
 use crate::model::{CollisionVolume, VolumeKind};
 use nalgebra::SymmetricEigen;
@@ -98,6 +98,13 @@ impl Bvh {
 
         let (verts, faces) = share_vertices(&corners)?;
         let scale = Bvh::scale_bound(&nodes, &verts);
+        let tiny = faces.iter().any(|f| {
+            let m = f
+                .iter()
+                .map(|&i| verts[i as usize].amax())
+                .fold(0.0, f64::max);
+            m < RESCALE_LO
+        });
         Ok(Bvh {
             nodes,
             verts,
@@ -105,6 +112,7 @@ impl Bvh {
             ids,
             collision,
             scale,
+            tiny,
         })
     }
 }

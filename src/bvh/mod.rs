@@ -19,7 +19,8 @@ pub(crate) use build::MAX_DEPTH;
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::geometry::Tri;
-use crate::math::{frame_from, Mat3, Vec3};
+use crate::geometry::RESCALE_HI;
+use crate::math::{frame_from, Mat3, RelPose, Vec3};
 use crate::model::CollisionVolume;
 
 /// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
@@ -101,6 +102,9 @@ pub(crate) struct Bvh {
     /// a bound's rounding is relative to, see [`Ssv::slack_for`]): a search takes one rounding
     /// allowance for all its pairs rather than one per pair.
     pub scale: f64,
+    /// Some triangle has every coordinate below `RESCALE_LO` in magnitude: a triangle test against
+    /// it may need rescaling (see [`in_kernel_range`](Bvh::in_kernel_range)).
+    pub tiny: bool,
 }
 
 impl Bvh {
@@ -111,6 +115,18 @@ impl Bvh {
         let inner = nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max);
         let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
         inner.max(5.0 * vertex)
+    }
+
+    /// Whether every pair of a triangle of `self` and one of `other` posed by `rel` has its largest
+    /// coordinate magnitude in `[RESCALE_LO, RESCALE_HI]`, so that triangle tests need no
+    /// rescaling: no triangle of `self` is tiny, and the coordinates of both stay below
+    /// `RESCALE_HI` (a vertex's `|v|_1` is at most `scale`, so a posed one's coordinates are at
+    /// most the largest rotation entry times the other's `scale` plus the largest translation).
+    /// `false` when unsure (the tests then check each pair).
+    pub fn in_kernel_range(&self, other: &Bvh, rel: &RelPose) -> bool {
+        let posed = rel.rot.amax() * other.scale + rel.trans.amax();
+        // The bound's own rounding is a few ulps: a margin of 2^-20 covers it.
+        !self.tiny && self.scale <= RESCALE_HI && posed * (1.0 + 1e-6) <= RESCALE_HI
     }
 
     /// Bytes held by the hierarchy.

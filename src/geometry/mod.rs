@@ -11,6 +11,7 @@ mod tri_distance;
 mod tri_overlap;
 
 pub use point_triangle::point_triangle;
+pub(crate) use predicates::{RESCALE_HI, RESCALE_LO};
 pub use segment_segment::segment_segment;
 pub use tri_distance::tri_distance;
 pub(crate) use tri_distance::{tri_distance_below, Near, Plane};

@@ -112,14 +112,17 @@ fn scale_keep_sign(x: f64, mut k: i32) -> f64 {
     }
 }
 
+/// The range of coordinate magnitudes the floating-point distance kernels take as they are:
+/// 2^200 and 2^-200 (see [`kernel_rescale`]).
+pub(crate) const RESCALE_HI: f64 = 1.606_938_044_258_990_3e60;
+pub(crate) const RESCALE_LO: f64 = 6.223_015_277_861_142e-61;
+
 /// For the floating-point distance kernels, whose intermediate values reach the fourth power of
 /// the coordinates: when the largest magnitude `m` is outside `[2^-200, 2^200]`, the exponent `k`
 /// such that `m * 2^k` is near 1 (scaling by a power of two is exact and is undone on the result).
 #[inline]
 pub(crate) fn kernel_rescale(m: f64) -> Option<i32> {
-    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
-    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
-    if m > HI && m.is_finite() || m < LO && m > 0.0 {
+    if m > RESCALE_HI && m.is_finite() || m < RESCALE_LO && m > 0.0 {
         Some((-exponent(m)).clamp(-1000, 1000))
     } else {
         None

@@ -14,7 +14,7 @@ use crate::math::Vec3;
 /// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
 /// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
-    match tri_distance_below(a, b, f64::INFINITY, Plane::A) {
+    match tri_distance_below(a, b, f64::INFINITY, Plane::A, false) {
         Near::Closest(c) => c,
         // Nothing is at least an infinite distance apart.
         Near::Apart(_) => unreachable!(),
@@ -41,8 +41,20 @@ pub(crate) enum Plane {
 /// of the other's plane and its nearest vertex there is at least `cutoff` from the plane, only
 /// that comes back: a search that prunes such pairs needs no more, and it is most of a triangle
 /// test's work saved. `first`: the triangle whose plane is tried first (where the last pair was
-/// settled, say: a search meets the same configuration again and again).
-pub(crate) fn tri_distance_below(a: &Tri, b: &Tri, cutoff: f64, first: Plane) -> Near {
+/// settled, say: a search meets the same configuration again and again). `in_range`: the caller
+/// knows that the largest coordinate magnitude of the six vertices lies in
+/// `[RESCALE_LO, RESCALE_HI]`, so that the kernel needs no rescaling (see [`kernel_rescale`]); a
+/// search knows it for all its pairs at once.
+pub(crate) fn tri_distance_below(
+    a: &Tri,
+    b: &Tri,
+    cutoff: f64,
+    first: Plane,
+    in_range: bool,
+) -> Near {
+    if in_range {
+        return distance_core(a, b, cutoff, first);
+    }
     let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
     if let Some(k) = kernel_rescale(m) {
         // Huge or tiny coordinates: work at unit scale (exactly, by a power of two).
@@ -406,7 +418,7 @@ mod tests {
             let exact = tri_distance(&a, &b);
             let cutoff = exact.distance * (0.5 + rng.unit());
             let first = [Plane::A, Plane::B][k % 2];
-            match tri_distance_below(&a, &b, cutoff, first) {
+            match tri_distance_below(&a, &b, cutoff, first, false) {
                 Near::Closest(c) => assert_eq!(c, exact, "case {k}"),
                 Near::Apart(_) => {
                     apart += 1;
@@ -429,7 +441,7 @@ mod tests {
             for f in [1.0 - 1e-15, 1.0, 1.0 + 1e-15, 1.0 + 1e-12] {
                 let cutoff = exact * f;
                 let first = [Plane::A, Plane::B][k % 2];
-                if let Near::Apart(_) = tri_distance_below(&a, &b, cutoff, first) {
+                if let Near::Apart(_) = tri_distance_below(&a, &b, cutoff, first, false) {
                     assert!(
                         exact >= cutoff * (1.0 - 1e-13),
                         "case {k}: {exact} {cutoff}"

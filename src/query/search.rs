@@ -132,6 +132,8 @@ pub(crate) struct ClosestSearch<'a> {
     /// The model 2 triangle last tested, posed in model 1's frame, and its index (`usize::MAX`:
     /// none yet): consecutive tests often share it (a leaf against a node of two leaves).
     posed: (usize, Tri),
+    /// No triangle pair of the two models needs rescaling (see [`Bvh::in_kernel_range`]).
+    in_range: bool,
     pub best: Best,
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
@@ -169,6 +171,7 @@ impl<'a> ClosestSearch<'a> {
             slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
             plane_first: Plane::A,
             posed: (usize::MAX, [Vec3::zeros(); 3]),
+            in_range: b1.in_kernel_range(b2, &rel),
             best: Best {
                 d: f64::INFINITY,
                 p: Vec3::zeros(),
@@ -212,7 +215,13 @@ impl<'a> ClosestSearch<'a> {
         } else {
             self.best.d
         };
-        let c = match tri_distance_below(&self.b1.tri(ta), moved, cutoff, self.plane_first) {
+        let c = match tri_distance_below(
+            &self.b1.tri(ta),
+            moved,
+            cutoff,
+            self.plane_first,
+            self.in_range,
+        ) {
             Near::Closest(c) => c,
             Near::Apart(plane) => {
                 self.plane_first = plane;
