@@ -72,7 +72,7 @@ impl CompactSsv {
     /// This volume carried by `rel` (by its inverse if `inverse`, the rotation taken as
     /// orthonormal), with its normal: the cross product of the carried axes.
     #[inline(always)]
-    fn posed(&self, rel: &RelPose, inverse: bool) -> Ssv {
+    pub(crate) fn posed(&self, rel: &RelPose, inverse: bool) -> Ssv {
         let (u, v, origin) = if inverse {
             (
                 rel.rot.tr_mul(&self.axes[0]),
@@ -324,6 +324,21 @@ impl Ssv {
         slack: f64,
     ) -> [(f64, Vec3); N] {
         let moved = b.posed(rel, inverse);
+        Ssv::bounds_against_posed(a, &moved, rel, inverse, want, cutoff, slack)
+    }
+
+    /// As [`bounds_against`](Ssv::bounds_against), with `b` already posed: `moved` is
+    /// `b.posed(rel, inverse)` (a search that meets the same `b` twice in a row poses it once).
+    #[inline(always)]
+    pub(crate) fn bounds_against_posed<const N: usize>(
+        a: [&CompactSsv; N],
+        moved: &Ssv,
+        rel: &RelPose,
+        inverse: bool,
+        want: Want,
+        cutoff: f64,
+        slack: f64,
+    ) -> [(f64, Vec3); N] {
         // A plain loop: `array::map` with this body is not inlined, and costs 8% of a query.
         let mut out = [(0.0, Vec3::zeros()); N];
         for (out, a) in out.iter_mut().zip(a) {
@@ -334,7 +349,7 @@ impl Ssv {
                 // In the fixed volume's frame, so that the kernel looks first at the corners of
                 // `a` (a child of the node split, the smaller as a rule), whose box in that frame
                 // is the tighter: 4% fewer instructions on the nested shells, 1.5% elsewhere.
-                Ssv::cores_distance_here(&moved, a, radii + slack, core_cutoff, want.exact)
+                Ssv::cores_distance_here(moved, a, radii + slack, core_cutoff, want.exact)
             });
             // From the frame of b's axes into a's model frame (from a to b), then (inverse) into
             // b's, turned to point from b to a. (For every bound: a branch on the cutoff costs
