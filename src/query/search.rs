@@ -20,6 +20,7 @@ use crate::geometry::{tri_distance_below, Near, Plane, Tri};
 use crate::math::{RelPose, Vec3};
 use std::cell::RefCell;
 use std::collections::VecDeque;
+use std::mem::MaybeUninit;
 
 /// The order in which a search visits the BVTT.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -152,41 +153,48 @@ pub(crate) struct ClosestSearch<'a> {
 pub(crate) struct LeafVolumes {
     first: LeafCache<CompactSsv>,
     second: LeafCache<CompactSsv>,
-    /// The volume last posed by [`expand`]: the next expansion often keeps the same node fixed (a
-    /// fifth of them on the nested shells).
-    posed: Posed,
+    /// Volumes recently posed by [`expand`]: a node stays the fixed side of several expansions
+    /// close together (a fifth of the nested shells' expansions fix the node fixed by the one
+    /// before, a third one fixed in the last few).
+    posed: PosedVolumes,
 }
 
-/// A node's volume posed in the other model's frame.
-struct Posed {
-    /// The node, and whether it is model 2's (posed in model 1's frame) or model 1's; `None`:
-    /// none yet.
-    node: Option<(NodeRef, bool)>,
-    volume: Ssv,
+/// Slots of [`PosedVolumes`].
+const POSED_SLOTS: usize = 64;
+
+/// Nodes' volumes posed in the other model's frame, in a small direct-mapped table (as
+/// [`LeafCache`]: only the keys are initialised).
+struct PosedVolumes {
+    /// The node each slot holds, as `key` gives it; 0: none.
+    keys: [u64; POSED_SLOTS],
+    volumes: [MaybeUninit<Ssv>; POSED_SLOTS],
 }
 
-impl Posed {
-    /// `v`, the volume of `node`, posed by `rel` (by its inverse for a node of model 1), unless
-    /// it is the one held. (The volume is looked up whether or not it is needed: measured
-    /// cheaper than looking it up only when it is.)
-    #[inline(always)]
-    fn get(&mut self, node: (NodeRef, bool), v: &CompactSsv, rel: &RelPose) -> &Ssv {
-        if self.node != Some(node) {
-            *self = Posed {
-                node: Some(node),
-                volume: v.posed(rel, !node.1),
-            };
+impl Default for PosedVolumes {
+    fn default() -> Self {
+        PosedVolumes {
+            keys: [0; POSED_SLOTS],
+            volumes: [const { MaybeUninit::uninit() }; POSED_SLOTS],
         }
-        &self.volume
     }
 }
 
-impl Default for Posed {
-    fn default() -> Self {
-        Posed {
-            node: None,
-            volume: Ssv::triangle(&[Vec3::zeros(); 3]),
+impl PosedVolumes {
+    /// `v`, the volume of node `r` of model 2 (`second`) or 1, posed by `rel` (by its inverse for
+    /// model 1), unless its slot holds it. (The volume is looked up whether or not it is needed:
+    /// measured cheaper than looking it up only when it is.)
+    #[inline(always)]
+    fn get(&mut self, r: NodeRef, second: bool, v: &CompactSsv, rel: &RelPose) -> &Ssv {
+        // Nonzero, and distinct for every node of either model.
+        let key = ((r as u32 as u64) << 1 | u64::from(second)) + 1;
+        let i =
+            (r as u32 as usize).wrapping_add(usize::from(second) * (POSED_SLOTS / 2)) % POSED_SLOTS;
+        if self.keys[i] != key {
+            self.volumes[i] = MaybeUninit::new(v.posed(rel, !second));
+            self.keys[i] = key;
         }
+        // SAFETY: a slot's key is set nonzero only together with its volume.
+        unsafe { self.volumes[i].assume_init_ref() }
     }
 }
 
@@ -660,7 +668,7 @@ pub(crate) fn expand(
     Some(if split_first {
         let fixed = leaves
             .posed
-            .get((b, true), volume(b2, &mut leaves.second, b), rel);
+            .get(b, true, volume(b2, &mut leaves.second, b), rel);
         let [c0, c1] = b1.nodes[a as usize].children;
         let children = volumes(b1, &mut leaves.first, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, false, want, cutoff, slack);
@@ -668,7 +676,7 @@ pub(crate) fn expand(
     } else {
         let fixed = leaves
             .posed
-            .get((a, false), volume(b1, &mut leaves.first, a), rel);
+            .get(a, false, volume(b1, &mut leaves.first, a), rel);
         let [c0, c1] = b2.nodes[b as usize].children;
         let children = volumes(b2, &mut leaves.second, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, true, want, cutoff, slack);
@@ -722,5 +730,48 @@ fn unit(v: Vec3) -> Vec3 {
         v * (1.0 / len2.sqrt())
     } else {
         Vec3::zeros()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whatever the slots, each node of either model gets its own volume posed the right way:
+    /// the same index in both models, nodes that share a slot, a node met again after its slot
+    /// was taken.
+    #[test]
+    fn posed_volumes_are_each_nodes_own() {
+        let rel = RelPose {
+            rot: nalgebra::Rotation3::from_euler_angles(0.3, -0.5, 1.1).into_inner(),
+            trans: Vec3::new(0.5, -2.0, 3.0),
+        };
+        let volume = |r: NodeRef| CompactSsv {
+            axes: [Vec3::x(), Vec3::y()],
+            origin: Vec3::new(f64::from(r), 1.0, -2.0),
+            lengths: [1.0, 2.0],
+            radius: 0.25,
+        };
+        let mut posed = PosedVolumes::default();
+        let s = POSED_SLOTS as NodeRef;
+        let asks = [
+            (0, true),
+            (0, false),
+            (0, true),
+            (s, true),
+            (0, true),
+            (-1, false),
+            (-1, true),
+            (-1 - s, false),
+            (-1, false),
+            (s / 2, true),
+            (s / 2, false),
+            (0, false),
+        ];
+        for (r, second) in asks {
+            let v = volume(r);
+            let got = *posed.get(r, second, &v, &rel);
+            assert_eq!(got, v.posed(&rel, !second), "node {r}, second {second}");
+        }
     }
 }
