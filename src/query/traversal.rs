@@ -111,7 +111,12 @@ impl<V: Copy> LeafCache<V> {
         inner: impl Fn(NodeRef) -> &'x V,
         leaf: impl Fn(NodeRef) -> V + Copy,
     ) -> &'x V {
-        self.get_two([r, r], inner, leaf)[0]
+        if r >= 0 {
+            return inner(r);
+        }
+        let i = self.fill(r, leaf);
+        // SAFETY: `fill` just set the slot's key to this leaf, with its volume.
+        unsafe { self.volumes[i].assume_init_ref() }
     }
 
     /// The volumes of nodes `rs`, by reference (no copy): an inner node's as `inner` gives it, a
