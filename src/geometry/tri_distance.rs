@@ -103,8 +103,8 @@ enum Feature {
 
 fn distance_core(a: &Tri, b: &Tri, cutoff: f64, first: Plane) -> Near {
     let cut = cutoff < f64::INFINITY;
-    let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
     if cut && first == Plane::B {
+        let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
         let oa = Sides::eval(&pb, a);
         if apart(&pb, &oa, cutoff) {
             return Near::Apart(Plane::B);
@@ -125,6 +125,7 @@ fn distance_core(a: &Tri, b: &Tri, cutoff: f64, first: Plane) -> Near {
     }
     // Without a cutoff, a's sides of b's plane are needed only for distances when b is strictly
     // on one side of a's plane: then no error bounds.
+    let pb = PlaneFilter::new(&b[0], &b[1], &b[2]);
     let oa = if ob.separated() && !cut {
         Sides::values(&pb, a)
     } else {
