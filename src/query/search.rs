@@ -284,14 +284,25 @@ impl<'a> ClosestSearch<'a> {
         (c.distance, c.q - c.p)
     }
 
+    /// As [`visit_unordered`](ClosestSearch::visit_unordered), the nearer child first.
+    #[inline]
+    fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
+        self.visit_unordered(p, cutoff, exact).map(|[x, y]| {
+            if y.0.bound < x.0.bound {
+                [y, x]
+            } else {
+                [x, y]
+            }
+        })
+    }
+
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
-    /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]),
-    /// nearer first.
+    /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]).
     ///
     /// Without `exact`, a leaf against a node of two leaves goes straight to its two triangle
     /// pairs, as if a leaf pair (see [`depth_first`](ClosestSearch::depth_first)).
     #[inline]
-    fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
+    fn visit_unordered(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
         if !exact {
             if let Some([x, y]) = twin_leaf_pairs(self.b1, self.b2, p) {
                 self.leaf_pair(&x);
@@ -305,13 +316,9 @@ impl<'a> ClosestSearch<'a> {
         };
         let (rel, slack) = (&self.rel, self.slack);
         match expand(self.b1, self.b2, rel, slack, p, cutoff, want, self.leaves) {
-            Some([x, y]) => {
+            Some(children) => {
                 self.stats.bv_tests += 2;
-                Some(if y.0.bound < x.0.bound {
-                    [y, x]
-                } else {
-                    [x, y]
-                })
+                Some(children)
             }
             None => {
                 self.leaf_pair(p);
@@ -458,9 +465,24 @@ impl<'a> ClosestSearch<'a> {
                 self.pruned(&p, Vec3::zeros());
                 continue;
             }
-            if let Some([(near, _), (far, _)]) = self.visit(&p, cut, !loose) {
-                stack.push(far);
-                stack.push(near);
+            if let Some([(x, _), (y, _)]) = self.visit_unordered(&p, cut, !loose) {
+                // Nearer child on top; a child at or beyond the cutoff is pruned now (the cutoff
+                // only falls). Both without branches where no front is kept: either decision is
+                // a coin toss on most models, which a branch mispredicts.
+                let pair = [x, y];
+                let k = usize::from(y.bound < x.bound);
+                let (near, far) = (pair[k], pair[1 - k]);
+                if self.front.is_none() {
+                    for c in [far, near] {
+                        let keep = c.bound < cut;
+                        stack.push_if(c, keep);
+                        self.pruned_min =
+                            least(self.pruned_min, if keep { f64::INFINITY } else { c.bound });
+                    }
+                } else {
+                    stack.push(far);
+                    stack.push(near);
+                }
             } else if stop(self.best.d) {
                 // Left unvisited: the front still covers them.
                 while let Some(p) = stack.pop() {
@@ -719,6 +741,16 @@ fn twin_leaf_pairs(b1: &Bvh, b2: &Bvh, p: &NodePair) -> Option<[NodePair; 2]> {
         twins(b1, p.a).map(|[c0, c1]| [pair(c0, p.b), pair(c1, p.b)])
     } else {
         None
+    }
+}
+
+/// The smaller of two numbers (no NaN reaches here), as a select.
+#[inline(always)]
+fn least(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
     }
 }
 

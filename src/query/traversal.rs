@@ -41,6 +41,13 @@ impl PairStack {
         self.len += 1;
     }
 
+    /// Pushes `p` if `keep`: written either way, counted only if kept (no branch).
+    #[inline]
+    pub fn push_if(&mut self, p: NodePair, keep: bool) {
+        self.items[self.len] = MaybeUninit::new(p);
+        self.len += usize::from(keep);
+    }
+
     #[inline]
     pub fn pop(&mut self) -> Option<NodePair> {
         if self.len == 0 {
