@@ -304,10 +304,28 @@ impl<'a> ClosestSearch<'a> {
     #[inline]
     fn visit_unordered(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
         if !exact {
-            if let Some([x, y]) = twin_leaf_pairs(self.b1, self.b2, p) {
-                self.leaf_pair(&x);
-                self.leaf_pair(&y);
-                return None;
+            match leaf_children(self.b1, self.b2, p) {
+                LeafChildren::Both([x, y]) => {
+                    self.leaf_pair(&x);
+                    self.leaf_pair(&y);
+                    return None;
+                }
+                LeafChildren::One(x, y) if self.front.is_none() => {
+                    // The leaf pair straight to its triangles, the other bounded alone; the
+                    // second child is a placeholder a depth-first search prunes (no front
+                    // records it).
+                    self.leaf_pair(&x);
+                    self.stats.bv_tests += 1;
+                    let want = Want { axes: false, exact };
+                    let (rel, slack) = (&self.rel, self.slack);
+                    let c = bound_one(self.b1, self.b2, rel, slack, &y, cutoff, want, self.leaves);
+                    let none = NodePair {
+                        bound: f64::INFINITY,
+                        ..y
+                    };
+                    return Some([c, (none, Vec3::zeros())]);
+                }
+                _ => {}
             }
         }
         let want = Want {
@@ -723,25 +741,67 @@ fn volumes<'x>(
     cache.get_two(rs, |r| &b.nodes[r as usize].ssv, |r| b.leaf_compact_ssv(r))
 }
 
-/// The two leaf pairs under `p`, when it pairs a leaf with a node of two leaves, with `p`'s bound
-/// (which bounds them too).
+/// The children of a BVTT node that pairs a leaf with an inner node, by how many of them are leaf
+/// pairs (with `p`'s bound, which bounds them too).
+enum LeafChildren {
+    /// Not such a node, or neither child is a leaf pair.
+    None,
+    /// The inner node's children are both leaves.
+    Both([NodePair; 2]),
+    /// One is: the leaf pair, then the other.
+    One(NodePair, NodePair),
+}
+
+/// See [`LeafChildren`].
 #[inline]
-fn twin_leaf_pairs(b1: &Bvh, b2: &Bvh, p: &NodePair) -> Option<[NodePair; 2]> {
-    let twins = |b: &Bvh, r: NodeRef| {
-        if r < 0 {
-            return None;
-        }
-        let [c0, c1] = b.nodes[r as usize].children;
-        (c0 < 0 && c1 < 0).then_some([c0, c1])
-    };
-    let pair = |a, b| NodePair { a, b, ..*p };
-    if p.a < 0 {
-        twins(b2, p.b).map(|[c0, c1]| [pair(p.a, c0), pair(p.a, c1)])
-    } else if p.b < 0 {
-        twins(b1, p.a).map(|[c0, c1]| [pair(c0, p.b), pair(c1, p.b)])
+fn leaf_children(b1: &Bvh, b2: &Bvh, p: &NodePair) -> LeafChildren {
+    let (leaf_first, node) = if p.a < 0 && p.b >= 0 {
+        (true, b2.nodes[p.b as usize].children)
+    } else if p.b < 0 && p.a >= 0 {
+        (false, b1.nodes[p.a as usize].children)
     } else {
-        None
+        return LeafChildren::None;
+    };
+    let pair = |c: NodeRef| {
+        let (a, b) = if leaf_first { (p.a, c) } else { (c, p.b) };
+        NodePair { a, b, ..*p }
+    };
+    match node {
+        [c0, c1] if c0 < 0 && c1 < 0 => LeafChildren::Both([pair(c0), pair(c1)]),
+        [c0, c1] if c0 < 0 => LeafChildren::One(pair(c0), pair(c1)),
+        [c0, c1] if c1 < 0 => LeafChildren::One(pair(c1), pair(c0)),
+        _ => LeafChildren::None,
     }
+}
+
+/// The bound of the BVTT node `p`, a leaf against an inner node, as [`expand`] gives its
+/// children's (the leaf posed, through the same table).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn bound_one(
+    b1: &Bvh,
+    b2: &Bvh,
+    rel: &RelPose,
+    slack: f64,
+    p: &NodePair,
+    cutoff: f64,
+    want: Want,
+    leaves: &mut LeafVolumes,
+) -> Child {
+    let [(bound, axis)] = if p.a < 0 {
+        let fixed = leaves
+            .posed
+            .get(p.a, false, volume(b1, &mut leaves.first, p.a), rel);
+        let node = &b2.nodes[p.b as usize].ssv;
+        Ssv::bounds_against_posed([node], fixed, rel, true, want, cutoff, slack)
+    } else {
+        let fixed = leaves
+            .posed
+            .get(p.b, true, volume(b2, &mut leaves.second, p.b), rel);
+        let node = &b1.nodes[p.a as usize].ssv;
+        Ssv::bounds_against_posed([node], fixed, rel, false, want, cutoff, slack)
+    };
+    (NodePair { bound, ..*p }, axis)
 }
 
 /// The smaller of two numbers (no NaN reaches here), as a select.
