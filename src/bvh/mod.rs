@@ -125,7 +125,7 @@ impl Bvh {
     /// `false` when unsure (the tests then check each pair).
     pub fn in_kernel_range(&self, other: &Bvh, rel: &RelPose) -> bool {
         let posed = rel.rot.amax() * other.scale + rel.trans.amax();
-        // The bound's own rounding is a few ulps: a margin of 2^-20 covers it.
+        // The bound's own rounding is a few ulps: a relative margin of 1e-6 covers it.
         !self.tiny && self.scale <= RESCALE_HI && posed * (1.0 + 1e-6) <= RESCALE_HI
     }
 

@@ -300,7 +300,9 @@ impl<'a> ClosestSearch<'a> {
     /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]).
     ///
     /// Without `exact`, a leaf against a node of two leaves goes straight to its two triangle
-    /// pairs, as if a leaf pair (see [`depth_first`](ClosestSearch::depth_first)).
+    /// pairs, as if a leaf pair; against a node of a leaf and an inner node (when no front is
+    /// kept), the leaf pair does, and the other child comes back with a placeholder at an
+    /// infinite bound for the second (see [`depth_first`](ClosestSearch::depth_first)).
     #[inline]
     fn visit_unordered(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
         if !exact {
@@ -462,12 +464,13 @@ impl<'a> ClosestSearch<'a> {
     /// final by then, and a tolerance query, whose cutoff is fixed, ask for them; a distance
     /// query's depth-first search from the root does not (on the spheres of BENCHMARKS.md, loose
     /// bounds there took 1.6 times the bound tests). On the nested shells, where most pairs are
-    /// below the cutoff, they take about a quarter off a query's time. With them, a leaf against
-    /// a node of two leaves goes straight to its two triangle pairs (see [`visit`]): bounding the
-    /// leaf pairs would cost about as much as a triangle test that the planes settle, and would
-    /// seldom prune where the cutoff stays put (shells 7% fewer instructions).
+    /// below the cutoff, they take about a quarter off a query's time. With them, a leaf pair
+    /// under a leaf and an inner node goes straight to its triangles (see [`visit_unordered`]):
+    /// bounding it would cost about as much as a triangle test that the planes settle, and would
+    /// seldom prune where the cutoff stays put (shells 7% fewer instructions for nodes of two
+    /// leaves, 2% more for nodes of a leaf and an inner node).
     ///
-    /// [`visit`]: ClosestSearch::visit
+    /// [`visit_unordered`]: ClosestSearch::visit_unordered
     fn depth_first(
         &mut self,
         root: NodePair,
