@@ -504,7 +504,9 @@ impl<'a> ClosestSearch<'a> {
                     stack.push(far);
                     stack.push(near);
                 }
-            } else if stop(self.best.d) {
+            }
+            // After a leaf pair (alone, or beside a child as above).
+            if stop(self.best.d) {
                 // Left unvisited: the front still covers them.
                 while let Some(p) = stack.pop() {
                     self.left(&p, Vec3::zeros());
