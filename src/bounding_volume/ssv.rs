@@ -331,7 +331,7 @@ impl Ssv {
     }
 
     /// As [`bounds_against`](Ssv::bounds_against), with `b` already posed: `moved` is
-    /// `b.posed(rel, inverse)` (a search that meets the same `b` twice in a row poses it once).
+    /// `b.posed(rel, inverse)` (a search keeps recently posed volumes and poses each once).
     #[inline(always)]
     pub(crate) fn bounds_against_posed<const N: usize>(
         a: [&CompactSsv; N],
