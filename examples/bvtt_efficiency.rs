@@ -64,15 +64,16 @@ fn main() {
     println!(
         "| gap | poses | BV tests/q | minimal BVTT nodes/q | minimal bound tests/q | \
          efficiency (BV tests / minimal nodes) | BV tests / minimal bound tests | \
-         median per-pose efficiency | tri tests/q | minimal leaf pairs/q |"
+         median per-pose efficiency | tri tests/q | minimal leaf pairs/q | \
+         expanded minimal nodes with one child below/q | with none below/q |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut result = DistanceResult::new();
     let mut sum_d = 0.0;
-    let mut total = [0.0f64; 5];
+    let mut total = [0.0f64; 7];
     let mut all_ratios = Vec::new();
     for chunk in poses.chunks(per_gap) {
-        let mut acc = [0.0f64; 5]; // bv, nodes, bound tests, tri, leaves
+        let mut acc = [0.0f64; 7]; // bv, nodes, bound tests, tri, leaves, single, none
         let mut ratios = Vec::new();
         for (_, p1, p2) in chunk {
             let opts = DistanceOptions {
@@ -88,8 +89,10 @@ fn main() {
                 m.bound_tests as f64,
                 result.stats.tri_tests as f64,
                 m.leaf_pairs_below as f64,
+                m.single_child_below as f64,
+                m.no_child_below as f64,
             ];
-            for k in 0..5 {
+            for k in 0..7 {
                 acc[k] += row[k];
                 total[k] += row[k];
             }
@@ -97,7 +100,7 @@ fn main() {
         }
         let n = chunk.len() as f64;
         println!(
-            "| {} | {} | {:.0} | {:.0} | {:.0} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} |",
+            "| {} | {} | {:.0} | {:.0} | {:.0} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.0} | {:.0} |",
             chunk[0].0,
             chunk.len(),
             acc[0] / n,
@@ -107,13 +110,15 @@ fn main() {
             acc[0] / acc[2],
             median(ratios.clone()),
             acc[3] / n,
-            acc[4] / n
+            acc[4] / n,
+            acc[5] / n,
+            acc[6] / n
         );
         all_ratios.extend(ratios);
     }
     let n = poses.len() as f64;
     println!(
-        "| all | {} | {:.0} | {:.0} | {:.0} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} |",
+        "| all | {} | {:.0} | {:.0} | {:.0} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.0} | {:.0} |",
         poses.len(),
         total[0] / n,
         total[1] / n,
@@ -122,7 +127,9 @@ fn main() {
         total[0] / total[2],
         median(all_ratios),
         total[3] / n,
-        total[4] / n
+        total[4] / n,
+        total[5] / n,
+        total[6] / n
     );
     println!("sum d = {sum_d:.12} (compare with pqp_bench's workload-1 checksum)");
     coherent(search);

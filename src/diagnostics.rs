@@ -25,6 +25,12 @@ pub struct MinimalBvtt {
     pub bound_tests: u64,
     /// Leaf pairs (triangle pairs) counted in `nodes_below`: triangle tests any such search makes.
     pub leaf_pairs_below: u64,
+    /// Inner nodes counted in `nodes_below` exactly one of whose children is below the distance
+    /// too: each costs two bound tests for one node of the minimal BVTT.
+    pub single_child_below: u64,
+    /// Inner nodes counted in `nodes_below` neither of whose children is below the distance: two
+    /// bound tests for no node of the minimal BVTT.
+    pub no_child_below: u64,
 }
 
 /// The minimal BVTT of the distance query between `m1` at `pose1` and `m2` at `pose2`, given their
@@ -68,10 +74,10 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
     let mut stack = vec![root];
     let mut leaves = LeafVolumes::default();
     let slack = Ssv::slack_for(b1.scale, b2.scale, rel);
+    // Written so that a NaN bound is not descended.
+    let below = |bound: f64| bound < d;
     while let Some(p) = stack.pop() {
-        // Written so that a NaN bound is not descended.
-        let below = p.bound < d;
-        if !below {
+        if !below(p.bound) {
             continue;
         }
         out.nodes_below += 1;
@@ -88,6 +94,11 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
             None => out.leaf_pairs_below += 1,
             Some(children) => {
                 out.bound_tests += 2;
+                match children.map(|c| below(c.0.bound)) {
+                    [false, false] => out.no_child_below += 1,
+                    [true, true] => {}
+                    _ => out.single_child_below += 1,
+                }
                 stack.extend(children.map(|c| c.0));
             }
         }
@@ -255,6 +266,15 @@ mod tests {
             assert!(r.stats.bv_tests >= m.bound_tests);
             assert!(r.stats.tri_tests >= m.leaf_pairs_below);
             assert!(m.bound_tests >= m.nodes_below);
+            // Every node below but the root is a child of an expanded one, which has one or two
+            // children below; the minimal BVTT's leaves (its leaf pairs among them) number one
+            // more than its nodes with two.
+            let inner = m.nodes_below - m.leaf_pairs_below;
+            let rest = m.nodes_below - 1 - m.single_child_below;
+            assert!(rest % 2 == 0);
+            let two_below = rest / 2;
+            assert_eq!(m.no_child_below + m.single_child_below + two_below, inner);
+            assert_eq!(two_below + 1, m.leaf_pairs_below + m.no_child_below);
             assert_eq!(
                 minimal_bvtt_size(&a, &p1, &b, &p2, r.distance).unwrap(),
                 m.nodes_below
@@ -276,7 +296,9 @@ mod tests {
             MinimalBvtt {
                 nodes_below: 0,
                 bound_tests: 1,
-                leaf_pairs_below: 0
+                leaf_pairs_below: 0,
+                single_child_below: 0,
+                no_child_below: 0,
             }
         );
         let all = minimal_bvtt(&a, &p1, &b, &p2, f64::INFINITY).unwrap();
@@ -285,6 +307,7 @@ mod tests {
         // A full binary tree with L leaves has 2L - 1 nodes, and so does the BVTT.
         assert_eq!(all.nodes_below, 2 * n1 * n2 - 1);
         assert_eq!(all.bound_tests, all.nodes_below);
+        assert_eq!((all.single_child_below, all.no_child_below), (0, 0));
     }
 
     #[test]
