@@ -524,3 +524,72 @@ fn tiny_and_huge_models_answer_as_rescaled() {
     }
     assert!(apart >= 10, "{apart}");
 }
+
+/// Extreme but valid arguments keep the queries' promises: a tolerance of -0 is 0, an infinite
+/// tolerance still reports a triangle pair within it, and error bounds so large that the cutoff
+/// would underflow (or become NaN) still make touching models answer 0.
+#[test]
+fn extreme_tolerances_and_error_bounds() {
+    let model = |tris: &[[[f64; 3]; 3]]| {
+        Model::from_triangles(
+            tris.iter()
+                .enumerate()
+                .map(|(i, t)| (t[0], t[1], t[2], i as i32)),
+        )
+        .unwrap()
+    };
+    let base = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let far = [[5.0, 5.0, 5.0], [6.0, 5.0, 5.0], [5.0, 6.0, 5.0]];
+    let crossing = [[0.25, 0.25, -1.0], [0.25, 0.25, 1.0], [0.5, 0.25, 1.0]];
+    let above = [[0.25, 0.25, 0.5], [0.75, 0.25, 0.5], [0.25, 0.75, 0.5]];
+    let a = model(&[base, far]);
+    let touching = model(&[crossing, above]);
+    let other_far = [[-5.0, -5.0, -5.0], [-6.0, -5.0, -5.0], [-5.0, -6.0, -5.0]];
+    let apart = model(&[above, other_far]);
+    let id = Pose::identity();
+    for search in all_searches() {
+        for t in [0.0, -0.0] {
+            let r = tolerance(&a, &id, &touching, &id, t, &search).unwrap();
+            assert!(
+                r.closer_than_tolerance && r.distance == 0.0,
+                "{t:?} {search:?}"
+            );
+            let r = tolerance(&a, &id, &apart, &id, t, &search).unwrap();
+            assert!(
+                !r.closer_than_tolerance && r.distance > 0.0,
+                "{t:?} {search:?} {r:?}"
+            );
+        }
+        for m in [&touching, &apart] {
+            let r = tolerance(&a, &id, m, &id, f64::INFINITY, &search).unwrap();
+            assert!(
+                r.closer_than_tolerance && r.distance.is_finite(),
+                "{search:?}"
+            );
+            // The reported points lie on the reported triangles, that distance apart.
+            assert!(r.id1 >= 0 && r.id2 >= 0);
+            assert!(((r.p1 - r.p2).norm() - r.distance).abs() <= 1e-12);
+        }
+        for (rel_err, abs_err) in [
+            (f64::INFINITY, f64::INFINITY),
+            (f64::INFINITY, 1.0),
+            (1e300, f64::INFINITY),
+            (1e300, 1e300),
+        ] {
+            let opts = DistanceOptions {
+                rel_err,
+                abs_err,
+                search,
+            };
+            let r = distance(&a, &id, &touching, &id, &opts).unwrap();
+            assert!(
+                r.distance == 0.0 && r.overlap,
+                "{rel_err} {abs_err} {search:?}"
+            );
+            let r = distance(&a, &id, &apart, &id, &opts).unwrap();
+            // Any answer at least the true distance (0.5) is within such bounds; it is a pair's.
+            assert!(r.distance >= 0.5 - 1e-12 && r.distance.is_finite());
+            assert!(((r.p1 - r.p2).norm() - r.distance).abs() <= 1e-12);
+        }
+    }
+}

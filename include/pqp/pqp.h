@@ -564,10 +564,10 @@ void pqp_distance_result_destroy(struct pqp_distance_result *r);
  * Poses are as for pqp_collide. The answer is within the error bounds asked for:
  * true <= distance <= min(true * (1 + rel_err), true + abs_err); abs_err = 0 asks for the exact
  * distance whatever rel_err is (as in PQP), abs_err = +infinity lets only rel_err act. When the
- * models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1. Reusing r
- * for the next query on the same two models starts from the last closest triangle pair and,
- * after a small motion, from the last query's BVTT front (both live in r, so models stay
- * shareable).
+ * models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1, whatever
+ * the bounds (infinite ones too). Reusing r for the next query on the same two models starts
+ * from the last closest triangle pair and, after a small motion, from the last query's BVTT
+ * front (both live in r, so models stay shareable).
  *
  * @param r        the result to fill (its previous answer is replaced).
  * @param R1, T1   the pose of model 1.
@@ -756,7 +756,8 @@ void pqp_tolerance_result_destroy(struct pqp_tolerance_result *r);
  * @param m1         model 1 (built).
  * @param R2, T2     the pose of model 2.
  * @param m2         model 2 (built; may be the same model as m1).
- * @param tolerance  the distance asked about, >= 0.
+ * @param tolerance  the distance asked about, >= 0 (-0 is 0; with +infinity every pair is
+ *                   within it, and the query still reports one triangle pair and its distance).
  * @param qsize      PQP's search queue size, >= 1, only checked (as for pqp_distance);
  *                   pqp_tolerance_search chooses the search.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
@@ -785,7 +786,8 @@ int pqp_tolerance(struct pqp_tolerance_result *r,
  * @param m1         model 1 (built).
  * @param R2, T2     the pose of model 2.
  * @param m2         model 2 (built; may be the same model as m1).
- * @param tolerance  the distance asked about, >= 0.
+ * @param tolerance  the distance asked about, >= 0 (-0 is 0; with +infinity every pair is
+ *                   within it, and the query still reports one triangle pair and its distance).
  * @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
  *                 NULL for the default (as pqp_search_options_default gives).
  * @return PQP_OK, or as pqp_tolerance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also

@@ -51,10 +51,10 @@ pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result
 /// Poses are as for pqp_collide. The answer is within the error bounds asked for:
 /// true <= distance <= min(true * (1 + rel_err), true + abs_err); abs_err = 0 asks for the exact
 /// distance whatever rel_err is (as in PQP), abs_err = +infinity lets only rel_err act. When the
-/// models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1. Reusing r
-/// for the next query on the same two models starts from the last closest triangle pair and,
-/// after a small motion, from the last query's BVTT front (both live in r, so models stay
-/// shareable).
+/// models touch or overlap the distance is 0 and pqp_distance_result_overlap reports 1, whatever
+/// the bounds (infinite ones too). Reusing r for the next query on the same two models starts
+/// from the last closest triangle pair and, after a small motion, from the last query's BVTT
+/// front (both live in r, so models stay shareable).
 ///
 /// @param r        the result to fill (its previous answer is replaced).
 /// @param R1, T1   the pose of model 1.

@@ -55,7 +55,8 @@ pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_resu
 /// @param m1         model 1 (built).
 /// @param R2, T2     the pose of model 2.
 /// @param m2         model 2 (built; may be the same model as m1).
-/// @param tolerance  the distance asked about, >= 0.
+/// @param tolerance  the distance asked about, >= 0 (-0 is 0; with +infinity every pair is
+///                   within it, and the query still reports one triangle pair and its distance).
 /// @param qsize      PQP's search queue size, >= 1, only checked (as for pqp_distance);
 ///                   pqp_tolerance_search chooses the search.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
@@ -99,7 +100,8 @@ pub unsafe extern "C" fn pqp_tolerance(
 /// @param m1         model 1 (built).
 /// @param R2, T2     the pose of model 2.
 /// @param m2         model 2 (built; may be the same model as m1).
-/// @param tolerance  the distance asked about, >= 0.
+/// @param tolerance  the distance asked about, >= 0 (-0 is 0; with +infinity every pair is
+///                   within it, and the query still reports one triangle pair and its distance).
 /// @param options  the strategy, queue size and triangle caching (see pqp_search_options), or
 ///                 NULL for the default (as pqp_search_options_default gives).
 /// @return PQP_OK, or as pqp_tolerance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also

@@ -159,12 +159,19 @@ pub fn distance_into(
     let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
-    // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly.
+    // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly. Until a pair is found
+    // nothing is pruned (infinite bounds would make it NaN), and while the best is above 0 a pair
+    // with bound 0 is not pruned whatever the bounds (a huge rel_err would underflow the cutoff
+    // to 0): touching models must answer 0.
     let cutoff = |d: f64| {
-        if abs_err == 0.0 {
+        if abs_err == 0.0 || d == f64::INFINITY {
             d
+        } else if d > 0.0 {
+            (d / (1.0 + rel_err))
+                .max(d - abs_err)
+                .max(f64::from_bits(1))
         } else {
-            (d / (1.0 + rel_err)).max(d - abs_err)
+            0.0
         }
     };
     search.run_from(

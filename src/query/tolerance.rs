@@ -106,25 +106,28 @@ pub fn tolerance_into(
     let options = search;
     let mut leaves = LeafVolumes::default();
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
+    // -0 is 0 (its bits would make the cutoff below negative). An infinite tolerance takes in
+    // every pair: the search still goes down to one triangle pair, whose distance it reports.
+    let limit = if tolerance == 0.0 {
+        0.0
+    } else {
+        tolerance.min(f64::MAX)
+    };
     // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair:
     // the cutoff is the least bound above the tolerance, or the best distance if smaller.
-    let above = if tolerance < f64::INFINITY {
-        f64::from_bits(tolerance.to_bits() + 1)
-    } else {
-        tolerance
-    };
+    let above = f64::from_bits(limit.to_bits() + 1);
     search.run(
         options,
         Strategy::DepthFirst,
         |d| d.min(above),
-        |d| d <= tolerance,
+        |d| d <= limit,
         // The cutoff falls only with a pair within the tolerance, which stops the search.
         true,
     );
     let best = search.best;
     result.stats = search.stats;
     result.tolerance = tolerance;
-    result.closer_than_tolerance = best.d <= tolerance;
+    result.closer_than_tolerance = best.d <= limit;
     if result.closer_than_tolerance {
         result.distance = best.d;
         result.p1 = best.p;
