@@ -593,3 +593,53 @@ fn extreme_tolerances_and_error_bounds() {
         }
     }
 }
+
+/// A degenerate triangle (a repeated vertex) touching coplanar triangles, with every volume
+/// family and both collision volumes: every touching pair is found, as brute force finds them.
+/// (A repeated vertex once gave the triangle's swept sphere volume two equal axes, and
+/// collision on swept sphere volumes missed half the pairs.)
+#[test]
+fn degenerate_triangle_collides_with_every_volume() {
+    use pqp::geometry::tri_overlap;
+    use pqp::{CollisionVolume, VolumeKind};
+    let segment = [[0.25, 0.75, 0.0], [0.0, 0.5, 0.0], [0.0, 0.5, 0.0]];
+    let others = [
+        [[-0.5, 0.5, 0.0], [0.0, -1.0, 0.0], [0.25, 0.5, 0.0]],
+        [[0.25, 1.0, 0.0], [-0.25, -1.0, 0.0], [0.25, 0.25, 0.0]],
+        [[0.5, -1.0, 0.0], [-1.0, 0.5, 0.0], [0.0, 0.5, 0.0]],
+        [[0.25, 0.75, 0.0], [0.0, 0.25, 0.0], [0.0, -0.75, 0.0]],
+    ];
+    let v = |p: [f64; 3]| pqp::Vec3::new(p[0], p[1], p[2]);
+    let tri = |t: [[f64; 3]; 3]| [v(t[0]), v(t[1]), v(t[2])];
+    let truth: Vec<(i32, i32)> = (0..others.len())
+        .filter(|&j| tri_overlap(&tri(segment), &tri(others[j])))
+        .map(|j| (0, j as i32))
+        .collect();
+    assert_eq!(truth.len(), 4, "the reference: all four touch the segment");
+    for kind in [
+        VolumeKind::Rss,
+        VolumeKind::Pss,
+        VolumeKind::Lss,
+        VolumeKind::Hybrid,
+    ] {
+        for collision in [CollisionVolume::Obb, CollisionVolume::Ssv] {
+            let model = |tris: &[[[f64; 3]; 3]]| {
+                let mut m = Model::new();
+                m.set_volume(kind).unwrap();
+                m.set_collision_volume(collision).unwrap();
+                m.begin(tris.len()).unwrap();
+                for (i, t) in tris.iter().enumerate() {
+                    m.add_triangle(t[0], t[1], t[2], i as i32).unwrap();
+                }
+                m.end().unwrap();
+                m
+            };
+            let (a, b) = (model(&[segment]), model(&others));
+            let id = Pose::identity();
+            let r = collide(&a, &id, &b, &id, ContactMode::All).unwrap();
+            let mut got: Vec<(i32, i32)> = r.pairs().iter().map(|p| (p.id1, p.id2)).collect();
+            got.sort_unstable();
+            assert_eq!(got, truth, "{kind:?} {collision:?}");
+        }
+    }
+}

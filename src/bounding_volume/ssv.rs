@@ -504,19 +504,18 @@ impl Ssv {
         // leaves a sliver's axis far from orthogonal, as the part is then mostly rounding), so
         // that the frame is orthonormal to rounding whatever the triangle's shape: the distance
         // and overlap tests rely on it.
+        // A triangle whose height across that edge is below 1e-12 of its length is taken as a
+        // segment (the part across is then rounding, which may point anywhere, even along `x`,
+        // and would make no frame); the radius then covers the third vertex.
         let across = |v: Vec3| v - x * x.dot(&v);
         let y0 = across(across(w));
         let n0 = y0.norm();
-        let y = if n0 > 0.0 && n0.is_finite() {
+        let y = if n0 > len * 1e-12 && n0.is_finite() {
             let y1 = y0 / n0;
             let y2 = across(y1);
             y2 / y2.norm()
         } else {
-            // A segment or a point: any axis across it.
-            let k = x.iamin();
-            let mut u = Vec3::zeros();
-            u[k] = 1.0;
-            x.cross(&u).normalize()
+            axis_across(&x)
         };
         let z = x.cross(&y);
         Ssv {
@@ -527,6 +526,16 @@ impl Ssv {
         }
         .cover(&[q, r])
     }
+}
+
+/// A unit vector across the unit vector `x` (the second axis of a segment's or a point's volume).
+#[cold]
+#[inline(never)]
+fn axis_across(x: &Vec3) -> Vec3 {
+    let k = x.iamin();
+    let mut u = Vec3::zeros();
+    u[k] = 1.0;
+    x.cross(&u).normalize()
 }
 
 impl OverlapVolume for Ssv {
@@ -656,5 +665,41 @@ mod tests {
             }
         }
         assert!(given > cases / 2, "{given} of {cases}");
+    }
+
+    /// A triangle's volume has an orthonormal frame and contains the triangle whatever its
+    /// shape: a repeated vertex, collinear vertices, a sliver, a point (a repeated vertex once
+    /// made both axes the same, and the volume missed the triangle's other points).
+    #[test]
+    fn triangle_volume_of_degenerate_triangles() {
+        let v = |x: f64, y: f64, z: f64| Vec3::new(x, y, z);
+        let cases = [
+            [v(0.25, 0.75, 0.0), v(0.0, 0.5, 0.0), v(0.0, 0.5, 0.0)],
+            [v(0.0, 0.5, 0.0), v(0.25, 0.75, 0.0), v(0.0, 0.5, 0.0)],
+            [v(0.1, 0.2, 0.3), v(0.4, 0.5, 0.6), v(0.7, 0.8, 0.9)],
+            [v(0.0, 0.0, 0.0), v(1.0, 1e-14, 0.0), v(0.5, 0.0, 1e-15)],
+            [v(1.0, 2.0, 3.0), v(1.0, 2.0, 3.0), v(1.0, 2.0, 3.0)],
+            [
+                v(-3.0, 1e-9, 7.0),
+                v(1.0 / 3.0, 1e-9, 7.0),
+                v(-3.0, 1e-9, 7.0),
+            ],
+        ];
+        for t in cases {
+            let s = Ssv::triangle(&t);
+            let gram = s.axes.transpose() * s.axes;
+            assert!(
+                (gram - Mat3::identity()).abs().max() <= 1e-12,
+                "{t:?}: {s:?}"
+            );
+            // Every point of the triangle (vertices and a grid of barycentric points).
+            for i in 0..=4 {
+                for j in 0..=4 - i {
+                    let (a, b) = (f64::from(i) / 4.0, f64::from(j) / 4.0);
+                    let p = t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b;
+                    assert!(s.contains(&p, 1e-12), "{t:?}: {p:?} outside {s:?}");
+                }
+            }
+        }
     }
 }

@@ -133,6 +133,9 @@ pub fn distance(
     Ok(r)
 }
 
+/// The largest factor the relative error bound prunes with (see `distance_into`).
+const TWO_TO_50: f64 = (1u64 << 50) as f64;
+
 /// As [`distance`], starting from the triangle pair cached in `result` by a previous query on the
 /// same two models. On error `result` is left as it was.
 pub fn distance_into(
@@ -159,19 +162,17 @@ pub fn distance_into(
     let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
-    // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly. Until a pair is found
-    // nothing is pruned (infinite bounds would make it NaN), and while the best is above 0 a pair
-    // with bound 0 is not pruned whatever the bounds (a huge rel_err would underflow the cutoff
-    // to 0): touching models must answer 0.
+    // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly. A pair with bound 0 must not
+    // be pruned while d > 0 (touching models answer 0): the factor is kept at most 2^50 (pruning
+    // less is always allowed), so that `d / scale` does not underflow to 0 for any d of at least
+    // 2^-1024, and stays infinite for an infinite d (an infinite rel_err would make it NaN). With
+    // an infinite abs_err, `d - abs_err` is NaN or -infinity, which `max` passes over.
+    let scale = (1.0 + rel_err).min(TWO_TO_50);
     let cutoff = |d: f64| {
-        if abs_err == 0.0 || d == f64::INFINITY {
+        if abs_err == 0.0 {
             d
-        } else if d > 0.0 {
-            (d / (1.0 + rel_err))
-                .max(d - abs_err)
-                .max(f64::from_bits(1))
         } else {
-            0.0
+            (d / scale).max(d - abs_err)
         }
     };
     search.run_from(
