@@ -8,6 +8,15 @@ pub type Vec3 = Vector3<f64>;
 /// A 3x3 matrix of `f64`.
 pub type Mat3 = Matrix3<f64>;
 
+/// The absolute part of every rounding allowance of a bound or an overlap test, added to the part
+/// relative to the magnitudes involved. Below about 1e-154 the squares of lengths are subnormal or
+/// zero, so a volume fitted to tiny points, or a length computed as the root of a sum of squares,
+/// may be off by up to about 1e-161 whatever the magnitudes: this covers it many times over. In
+/// scenes of ordinary size it changes no bound (it is below their rounding); a scene whose
+/// coordinates are all below about 1e-135 is answered as exactly, but its volumes prune less, down
+/// to none below 1e-150.
+pub(crate) const UNDERFLOW_SLACK: f64 = 1e-150;
+
 /// The frame with first axes `a0`, `a1` and third `a0 x a1`. The hierarchy stores only the first
 /// two axes of a frame, and recovers the third through this function, bit for bit as the build
 /// computed it.

@@ -643,3 +643,180 @@ fn degenerate_triangle_collides_with_every_volume() {
         }
     }
 }
+
+/// Builds a model of `tris` (ids = indices) with the given volumes.
+fn model_with(
+    tris: &[[[f64; 3]; 3]],
+    kind: pqp::VolumeKind,
+    collision: pqp::CollisionVolume,
+) -> Model {
+    let mut m = Model::new();
+    m.set_volume(kind).unwrap();
+    m.set_collision_volume(collision).unwrap();
+    for (i, t) in tris.iter().enumerate() {
+        m.add_triangle(t[0], t[1], t[2], i as i32).unwrap();
+    }
+    m.end().unwrap();
+    m
+}
+
+/// Contact pairs as sorted ids.
+fn pair_ids(pairs: &[pqp::ContactPair]) -> Vec<(i32, i32)> {
+    let mut v: Vec<(i32, i32)> = pairs.iter().map(|p| (p.id1, p.id2)).collect();
+    v.sort_unstable();
+    v
+}
+
+/// Every volume family with each collision volume.
+fn all_volumes() -> Vec<(pqp::VolumeKind, pqp::CollisionVolume)> {
+    use pqp::{CollisionVolume, VolumeKind};
+    let kinds = [
+        VolumeKind::Rss,
+        VolumeKind::Pss,
+        VolumeKind::Lss,
+        VolumeKind::Hybrid,
+    ];
+    let mut v = Vec::new();
+    for k in kinds {
+        for c in [CollisionVolume::Obb, CollisionVolume::Ssv] {
+            v.push((k, c));
+        }
+    }
+    v
+}
+
+/// Scenes so small that squared lengths underflow (below about 1e-154) answer as the same scenes
+/// at unit scale, scaled by the same power of two (exact): every volume family and collision
+/// volume, the three queries, and a coherent motion through one reused result (its front). Volumes
+/// fitted there miss their points by up to about 1e-161, and lengths computed as roots of sums of
+/// squares err as much, whatever the scene's size: once, a capsule fitted to 1e-300 triangles had
+/// radius 0 and collision missed every contact, 1e-161 scenes answered distances 3.5% high, and a
+/// front at 1e-302 pruned the closest pair.
+#[test]
+fn subnormal_scale_scenes_answer_as_at_unit_scale() {
+    let mut rng = Rng::new(97);
+    for case in 0..8 {
+        // Small soups, every third triangle a segment (a repeated vertex).
+        let soup = |rng: &mut Rng| {
+            let mut m = Mesh::soup(rng, 10, 0.6, 0.5);
+            for t in m.tris.iter_mut().step_by(3) {
+                t[2] = t[1];
+            }
+            m
+        };
+        let (a, b) = (soup(&mut rng), soup(&mut rng));
+        let rot = rng.rotation();
+        let t0 = rng.point(0.8);
+        // A small tumble: the poses of B along the motion.
+        let motion: Vec<([[f64; 3]; 3], [f64; 3])> = (0..4)
+            .map(|i| {
+                let c = 0.01 * f64::from(i);
+                let (cs, sn) = (c.cos(), c.sin());
+                let turn = [[cs, -sn, 0.0], [sn, cs, 0.0], [0.0, 0.0, 1.0]];
+                let mut r = [[0.0; 3]; 3];
+                for (i, row) in r.iter_mut().enumerate() {
+                    for (j, x) in row.iter_mut().enumerate() {
+                        *x = (0..3).map(|k| turn[i][k] * rot[k][j]).sum();
+                    }
+                }
+                (r, [t0[0] + 0.02 * c, t0[1], t0[2] - 0.01 * c])
+            })
+            .collect();
+        let id = Pose::identity();
+        let unit_pose = |k: usize| Pose::new(motion[k].0, motion[k].1);
+        let truth = brute(&a, &id, &b, &unit_pose(0));
+        for (kind, collision) in all_volumes() {
+            let (ua, ub) = (
+                model_with(&a.tris, kind, collision),
+                model_with(&b.tris, kind, collision),
+            );
+            let exact = DistanceOptions::exact();
+            let unit = distance(&ua, &id, &ub, &unit_pose(0), &exact).unwrap();
+            assert!(close(unit.distance, truth.distance));
+            let unit_pairs = collide(&ua, &id, &ub, &unit_pose(0), ContactMode::All).unwrap();
+            for e in [-520, -535, -1000] {
+                let s = 2f64.powi(e);
+                let scaled = |m: &Mesh| -> Vec<[[f64; 3]; 3]> {
+                    m.tris.iter().map(|t| t.map(|p| p.map(|x| x * s))).collect()
+                };
+                let (sa, sb) = (
+                    model_with(&scaled(&a), kind, collision),
+                    model_with(&scaled(&b), kind, collision),
+                );
+                let pose = |k: usize| Pose::new(motion[k].0, motion[k].1.map(|x| x * s));
+                let what = format!("case {case}, {kind:?}/{collision:?}, scale 2^{e}");
+                let r = distance(&sa, &id, &sb, &pose(0), &exact).unwrap();
+                assert!(
+                    (r.distance / s - unit.distance).abs() <= 1e-12 * unit.distance,
+                    "{what}: {:e} vs {:e}",
+                    r.distance / s,
+                    unit.distance
+                );
+                let c = collide(&sa, &id, &sb, &pose(0), ContactMode::All).unwrap();
+                assert_eq!(pair_ids(c.pairs()), pair_ids(unit_pairs.pairs()), "{what}");
+                if unit.distance > 0.0 {
+                    for (f, closer) in [(1.0 + 1e-9, true), (1.0 - 1e-9, false)] {
+                        let t = unit.distance * f * s;
+                        let r = tolerance(&sa, &id, &sb, &pose(0), t, &Search::default()).unwrap();
+                        assert_eq!(r.closer_than_tolerance, closer, "{what}, {f}");
+                    }
+                }
+                // Along the motion, one result reused (triangle cache and front).
+                let mut reused = DistanceResult::new();
+                for k in 0..motion.len() {
+                    distance_into(&mut reused, &sa, &id, &sb, &pose(k), &exact).unwrap();
+                    let fresh = distance(&ua, &id, &ub, &unit_pose(k), &exact).unwrap();
+                    assert!(
+                        (reused.distance / s - fresh.distance).abs() <= 1e-12 * fresh.distance,
+                        "{what}, step {k}: {:e} vs {:e}",
+                        reused.distance / s,
+                        fresh.distance
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A triangle tiny beside the other's coordinates (3e4 beside 8.7e127): its normal's square
+/// underflows once the triangle test works at the pair's scale, and the test that shows a pair at
+/// least the cutoff apart must then not decide (it once called this pair apart below the cutoff,
+/// so that tolerance said no and cached searches answered 1.3% high).
+#[test]
+fn tiny_triangle_beside_huge_coordinates() {
+    let a = [[[0.0, 0.0, 0.0], [0.0, 0.0, -32768.0], [0.0, 16384.0, 0.0]]];
+    let b = [
+        [[0.0, 0.0, 0.0]; 3],
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 8.664592794127546e127],
+        ],
+    ];
+    let (ma, mb) = (Mesh { tris: a.to_vec() }, Mesh { tris: b.to_vec() });
+    let id = Pose::identity();
+    let moved = Pose::from_translation([
+        -1.943864225315713e121,
+        -1.0855337746980732e121,
+        -3.587745898334106e120,
+    ]);
+    let truth = brute(&ma, &id, &mb, &moved).distance;
+    assert!((truth - 2.226430259961561e121).abs() <= 1e-9 * truth);
+    let (a, b) = (ma.model(), mb.model());
+    for search in all_searches() {
+        let r = tolerance(&a, &id, &b, &moved, truth * (1.0 + 1e-6), &search).unwrap();
+        assert!(r.closer_than_tolerance, "{search:?}");
+        let opts = DistanceOptions {
+            search,
+            ..DistanceOptions::exact()
+        };
+        let mut reused = DistanceResult::new();
+        distance_into(&mut reused, &a, &id, &b, &id, &opts).unwrap();
+        distance_into(&mut reused, &a, &id, &b, &moved, &opts).unwrap();
+        assert!(
+            close(reused.distance, truth),
+            "{search:?}: {:e}",
+            reused.distance
+        );
+    }
+}

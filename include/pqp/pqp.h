@@ -315,7 +315,9 @@ int pqp_model_begin(struct pqp_model *m, int num_tris_hint);
  * Adds a triangle to a model being built (PQP's AddTri).
  *
  * Before pqp_model_begin, the model is begun implicitly (as PQP does). Degenerate triangles (a
- * segment, a point) are accepted.
+ * segment, a point) are accepted, and so are coordinates of any magnitude up to 1e150, however
+ * small: answers stay exact, but in a scene whose coordinates are all below about 1e-135 the
+ * bounding volumes prune less (below 1e-150, not at all: a query may test every triangle pair).
  *
  * @param m           the model.
  * @param p1, p2, p3  the vertices, 3 doubles each (x, y, z in the model's frame).

@@ -1,6 +1,6 @@
 use super::{BoundingVolume, OverlapVolume};
 use crate::geometry::Tri;
-use crate::math::{Mat3, RelPose, Vec3};
+use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
 
 /// Oriented bounding box.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,7 +106,8 @@ impl OverlapVolume for Obb {
         let m = a.axes.tr_mul(&rel.rot);
         let t = m * b.center + a.axes.tr_mul(&(rel.trans - a.center));
         let slack = OVERLAP_SLACK
-            * (abs_sum(&a.center) + abs_sum(&b.center) + abs_sum(&rel.trans) + ha.sum() + hb.sum());
+            * (abs_sum(&a.center) + abs_sum(&b.center) + abs_sum(&rel.trans) + ha.sum() + hb.sum())
+            + UNDERFLOW_SLACK;
 
         // a's face normals, one row of R at a time: most separated pairs go at the first.
         let mut r = Mat3::zeros();
@@ -151,7 +152,7 @@ impl OverlapVolume for Obb {
         let h = &a.half;
         let v = [a.local(&t[0]), a.local(&t[1]), a.local(&t[2])];
         let scale = abs_sum(&a.center) + abs_sum(&t[0]) + abs_sum(&t[1]) + abs_sum(&t[2]) + h.sum();
-        let slack = OVERLAP_SLACK * scale;
+        let slack = OVERLAP_SLACK * scale + UNDERFLOW_SLACK;
         // Whether the triangle's projection on `axis` (box coordinates) misses the box's.
         let apart = |axis: &Vec3| {
             let (p0, p1, p2) = (axis.dot(&v[0]), axis.dot(&v[1]), axis.dot(&v[2]));

@@ -10,7 +10,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{frame_from, Mat3, RelPose, Vec3};
+use crate::math::{frame_from, Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -428,7 +428,7 @@ impl Ssv {
     #[inline(always)]
     pub(crate) fn slack_for(scale_a: f64, scale_b: f64, rel: &RelPose) -> f64 {
         let t = rel.trans;
-        BOUND_SLACK * (scale_a + scale_b + t.x.abs() + t.y.abs() + t.z.abs())
+        BOUND_SLACK * (scale_a + scale_b + t.x.abs() + t.y.abs() + t.z.abs()) + UNDERFLOW_SLACK
     }
 
     /// The centre of the core and the radius of a ball around the whole volume.

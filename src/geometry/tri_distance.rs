@@ -85,9 +85,14 @@ fn apart(plane: &PlaneFilter, sides: &Sides, cutoff: f64) -> bool {
     // orientations (fourth powers of the coordinates), so that nothing overflows: a quotient too
     // large to square is far beyond the cutoff.
     const K: f64 = 1.0 / (1u64 << 40) as f64;
+    // Squares that underflow prove nothing (a triangle tiny beside the other's coordinates, after
+    // the kernel's rescaling, has a normal whose square is subnormal or zero): only a right side
+    // far above the subnormals, where their loss is below the margins, decides.
+    const LEAST: f64 = 1e-270;
     let e = plane.normal_error_bound();
     let q = clearance / cutoff;
-    q * q >= (1.0 + K) * plane.n.norm_squared() + (1.0 + 1.0 / K) * (e * e)
+    let needed = (1.0 + K) * plane.n.norm_squared() + (1.0 + 1.0 / K) * (e * e);
+    needed >= LEAST && q * q >= needed
 }
 
 /// Which candidate is closest so far.

@@ -30,7 +30,7 @@
 use super::search::{Search, Strategy};
 use super::traversal::NodePair;
 use crate::bvh::{Bvh, NodeRef};
-use crate::math::{Mat3, RelPose, Vec3};
+use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
 use crate::model::Model;
 
 /// How far the points of model 2 may have moved, in model 1's frame, since the front's bounds were
@@ -64,7 +64,9 @@ impl Motion {
     #[inline]
     fn bound(&self, o: &Vec3, e: f64) -> f64 {
         let m = (self.dr * o + self.dt).norm() + self.dr_norm * e;
-        m * (1.0 + 1e-9) + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
+        m * (1.0 + 1e-9)
+            + 256.0 * f64::EPSILON * (o.norm() + e + self.slack_scale)
+            + UNDERFLOW_SLACK
     }
 
     /// How much a front node's bound `bound` on the distance below model 2's node `b` may have
@@ -98,6 +100,7 @@ impl Motion {
         m + 1e-9 * size
             + 256.0 * f64::EPSILON * (o.norm() + e + s)
             + 4096.0 * f64::EPSILON * s * s / bound
+            + UNDERFLOW_SLACK
     }
 
     /// How far any point of model 2 may have moved.
