@@ -1176,3 +1176,67 @@ fn non_finite_input_does_not_panic() {
         }
     }
 }
+
+/// Contact between triangles whose coordinates span more magnitudes than the orientation
+/// predicates' expansions hold (1e128 beside 1e-6): an exactly collinear triangle far above a
+/// small one, the signs must still be exact (the expansions once underflowed and found the small
+/// triangle's vertices off the collinear one's degenerate plane, so that contact was reported).
+#[test]
+fn contact_is_exact_across_any_span_of_magnitudes() {
+    let v = |x: f64, y: f64, z: f64| Vec3::new(x, y, z);
+    let cases: [(Tri, Tri, f64); 2] = [
+        (
+            [
+                v(
+                    1101.5697305148933,
+                    -1531.2841024189256,
+                    7.067056208293714e128,
+                ),
+                v(
+                    1.8277582005830482,
+                    -5.824099390767515,
+                    7.067056208293714e128,
+                ),
+                v(
+                    -1097.9142141137272,
+                    1519.6359036373906,
+                    7.067056208293714e128,
+                ),
+            ],
+            [
+                v(
+                    -3.5142293199896812e-6,
+                    1.4300458133220673e-6,
+                    814531.7163514459,
+                ),
+                v(
+                    0.001003365614451468,
+                    -0.03957756399177015,
+                    814531.7163514459,
+                ),
+                v(0.0004999256925657392, -0.019788066972978413, 0.0),
+            ],
+            7.067056208293714e128,
+        ),
+        (
+            [
+                v(-544314.4081678336, 693886.4847471683, 5.883840431647178e128),
+                v(-542974.0179784893, 691890.3785868773, 5.883840431647178e128),
+                v(-543644.2130731614, 692888.4316670228, 5.883840431647178e128),
+            ],
+            [
+                v(-543744.1748092918, 692023.2762037627, 726198.0302589582),
+                v(-543744.8681597573, 692023.1733819772, 726197.774868045),
+                v(-543744.5214845246, 692023.22479287, 726197.9025635016),
+            ],
+            5.883840431647178e128,
+        ),
+    ];
+    for (a, b, height) in cases {
+        for (x, y) in [(&a, &b), (&b, &a)] {
+            assert!(!tri_overlap(x, y));
+            let d = tri_distance(x, y).distance;
+            assert!((d - height).abs() <= 1e-9 * height, "{d:e}");
+        }
+    }
+}

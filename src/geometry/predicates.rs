@@ -6,10 +6,12 @@
 //! (the idea of Priest and Shewchuk's adaptive predicates). The returned `f64` always has the exact
 //! sign of the determinant and approximates its value, so callers may also use it as a magnitude.
 //!
-//! Exactness assumes that no intermediate product underflows: the exact path rescales its input by a
-//! power of two so that the largest coordinate is near 2^100, which leaves only inputs whose nonzero
-//! coordinates span more than about 2^300 in magnitude (e.g. 1 and 1e-100 together) to rounding.
+//! The expansions are exact as long as no intermediate product underflows: the exact path rescales
+//! its input by a power of two so that the largest coordinate is near 2^100, which is enough unless
+//! the nonzero coordinates span more than 2^330 in magnitude (1e6 and 1e128 together, say). Such
+//! input is evaluated with exact integers instead (`big_int.rs`): slower, and as rare as it sounds.
 
+use super::big_int::BigInt;
 use crate::math::Vec3;
 
 /// Unit roundoff multiple used by the filters: comfortably above the worst accumulated relative
@@ -213,13 +215,37 @@ impl<const N: usize> Expansion<N> {
     }
 }
 
-/// The power of two that brings the largest magnitude among `vals` near 2^100, as an exponent.
-fn normalising_exponent(vals: &[f64]) -> Option<i32> {
-    let m = vals.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if m == 0.0 || !m.is_finite() {
-        return None;
+/// How the exact predicates evaluate their input (see the module docs).
+enum Exact {
+    /// Every value is 0 (or one is not finite).
+    Zero,
+    /// With expansions, after scaling by 2^k, which brings the largest magnitude near 2^100.
+    Scaled(i32),
+    /// With exact integers: the nonzero magnitudes span more than 2^330, so that products of
+    /// three could underflow after any scaling.
+    Integers,
+}
+
+/// How to evaluate exactly a determinant of degree at most 3 in `vals`. With the largest magnitude
+/// at 2^100 and the least nonzero one at least 2^(100 - 330 - 52) (a subnormal's exponent reads
+/// up to 52 too high), each value is a multiple of 2^-334 and every partial product of three a
+/// multiple of 2^-1002, which no expansion rounds.
+fn exact_method(vals: &[f64]) -> Exact {
+    let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+    for v in vals {
+        let a = v.abs();
+        hi = hi.max(a);
+        if a != 0.0 {
+            lo = lo.min(a);
+        }
     }
-    Some((100 - exponent(m)).clamp(-1000, 1000))
+    if hi == 0.0 || !hi.is_finite() {
+        Exact::Zero
+    } else if exponent(hi) - exponent(lo) > 330 {
+        Exact::Integers
+    } else {
+        Exact::Scaled((100 - exponent(hi)).clamp(-1000, 1000))
+    }
 }
 
 /// Orientation of `d` relative to the plane through `a`, `b`, `c`: the determinant
@@ -305,10 +331,10 @@ impl PlaneFilter {
 
 /// `orient3d` computed exactly (its value rounded, its sign exact).
 pub(crate) fn orient3d_exact(a: &Vec3, b: &Vec3, c: &Vec3, d: &Vec3) -> f64 {
-    let Some(k) =
-        normalising_exponent(&[a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z])
-    else {
-        return 0.0;
+    let k = match exact_method(&[a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z]) {
+        Exact::Zero => return 0.0,
+        Exact::Integers => return orient3d_integers(a, b, c, d),
+        Exact::Scaled(k) => k,
     };
     let s = pow2(k);
     let (a, b, c, d) = (a * s, b * s, c * s, d * s);
@@ -342,6 +368,22 @@ pub(crate) fn orient3d_exact(a: &Vec3, b: &Vec3, c: &Vec3, d: &Vec3) -> f64 {
     scale_keep_sign(value, -3 * k)
 }
 
+/// `orient3d` with exact integers (every double is an integer multiple of 2^-1074).
+#[cold]
+#[inline(never)]
+fn orient3d_integers(a: &Vec3, b: &Vec3, c: &Vec3, d: &Vec3) -> f64 {
+    let big = |p: &Vec3| [p.x, p.y, p.z].map(BigInt::from_f64);
+    let [a, b, c, d] = [a, b, c, d].map(big);
+    let diff = |p: &[BigInt; 3]| [0, 1, 2].map(|i| p[i].sub(&a[i]));
+    let (u, v, w) = (diff(&b), diff(&c), diff(&d));
+    let minor = |i: usize, j: usize| v[i].mul(&w[j]).sub(&v[j].mul(&w[i]));
+    let det = u[0]
+        .mul(&minor(1, 2))
+        .sub(&u[1].mul(&minor(0, 2)))
+        .add(&u[2].mul(&minor(0, 1)));
+    det.to_f64_scaled(3 * super::big_int::LSB)
+}
+
 /// Adds `sign * det[u; v; w]` to `e` as 6 exact triple products.
 fn det3_terms<const N: usize>(e: &mut Expansion<N>, sign: f64, u: &Vec3, v: &Vec3, w: &Vec3) {
     e.add_triple(sign, u.x, v.y, w.z);
@@ -371,8 +413,10 @@ pub(crate) fn orient2d(a: P2, b: P2, c: P2) -> f64 {
 
 /// `orient2d` computed exactly.
 fn orient2d_exact(a: P2, b: P2, c: P2) -> f64 {
-    let Some(k) = normalising_exponent(&[a[0], a[1], b[0], b[1], c[0], c[1]]) else {
-        return 0.0;
+    let k = match exact_method(&[a[0], a[1], b[0], b[1], c[0], c[1]]) {
+        Exact::Zero => return 0.0,
+        Exact::Integers => return orient2d_integers(a, b, c),
+        Exact::Scaled(k) => k,
     };
     let s = pow2(k);
     let (a, b, c) = (
@@ -389,6 +433,18 @@ fn orient2d_exact(a: P2, b: P2, c: P2) -> f64 {
     e.add_product(1.0, b[0], c[1]);
     e.add_product(-1.0, b[1], c[0]);
     scale_keep_sign(e.leading(), -2 * k)
+}
+
+/// `orient2d` with exact integers.
+#[cold]
+#[inline(never)]
+fn orient2d_integers(a: P2, b: P2, c: P2) -> f64 {
+    let [a, b, c] = [a, b, c].map(|p| p.map(BigInt::from_f64));
+    let (ux, uy) = (b[0].sub(&a[0]), b[1].sub(&a[1]));
+    let (vx, vy) = (c[0].sub(&a[0]), c[1].sub(&a[1]));
+    ux.mul(&vy)
+        .sub(&uy.mul(&vx))
+        .to_f64_scaled(2 * super::big_int::LSB)
 }
 
 #[cfg(test)]
