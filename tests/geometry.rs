@@ -1177,6 +1177,69 @@ fn non_finite_input_does_not_panic() {
     }
 }
 
+/// Near-touching disjoint triangles (a vertex of one a few ulps off an edge or the face of the
+/// other): the distance is 0 exactly when `tri_overlap` finds contact, and otherwise positive,
+/// however far below rounding the gap is (it was once reported as 0, with the models flagged as
+/// overlapping while collision found no contact).
+#[test]
+fn disjoint_triangles_are_never_at_distance_zero() {
+    let v = |x: f64, y: f64, z: f64| Vec3::new(x, y, z);
+    // A gap of 5.45e-18, exactly (rational arithmetic).
+    let a: Tri = [
+        v(1.0, 0.0, 0.25),
+        v(
+            9.064322256678745e-1,
+            -1.2520958041876146e-1,
+            1.7506994258459135e-1,
+        ),
+        v(
+            9.088266031750115e-1,
+            -1.2407574393634253e-1,
+            1.7435222752896343e-1,
+        ),
+    ];
+    let b: Tri = [
+        v(
+            9.087561920911569e-1,
+            -1.2410908648796735e-1,
+            1.7437333326304877e-1,
+        ),
+        v(0.0, 0.0, 0.0),
+        v(0.0, -3.828125e-1, 0.0),
+    ];
+    assert!(!tri_overlap(&a, &b));
+    let d = tri_distance(&a, &b).distance;
+    assert!(d > 0.0 && d <= 1e-15, "{d:e}");
+
+    let mut rng = Rng(61);
+    let (mut apart, mut touching) = (0, 0);
+    for k in 0..20000 {
+        let a: Tri = [rng.vec(1.0), rng.vec(1.0), rng.vec(1.0)];
+        // A point on an edge or inside the face of a, nudged by a few ulps.
+        let (s, t) = (rng.unit(), rng.unit());
+        let on = if k % 2 == 0 {
+            a[0] + (a[1] - a[0]) * s
+        } else {
+            a[0] + (a[1] - a[0]) * (s * 0.5) + (a[2] - a[0]) * (t * 0.5)
+        };
+        let tip = on + rng.dir() * (f64::EPSILON * rng.range(0.0, 4.0));
+        let away = rng.dir();
+        let b: Tri = [tip, tip + away, tip + rng.vec(1.0).cross(&away)];
+        let d = tri_distance(&a, &b).distance;
+        if tri_overlap(&a, &b) {
+            touching += 1;
+            assert_eq!(d, 0.0, "case {k}");
+        } else {
+            apart += 1;
+            assert!(d > 0.0 && d <= 1e-14, "case {k}: {d:e}");
+        }
+    }
+    assert!(
+        apart > 1000 && touching > 1000,
+        "{apart} apart, {touching} touching"
+    );
+}
+
 /// Contact between triangles whose coordinates span more magnitudes than the orientation
 /// predicates' expansions hold (1e128 beside 1e-6): an exactly collinear triangle far above a
 /// small one, the signs must still be exact (the expansions once underflowed and found the small

@@ -9,8 +9,8 @@ use crate::math::Vec3;
 /// they intersect or touch, the distance is 0 and `p == q` is a common point.
 ///
 /// Contact is decided exactly (as [`tri_overlap`](super::tri_overlap), with which this function
-/// agrees: the distance is 0 exactly when the triangles share a point, barring separations below
-/// the rounding of the coordinates). Otherwise the closest pair is among the 9 edge pairs and the
+/// agrees: the distance is 0 exactly when the triangles share a point; a separation that rounds to
+/// 0 is reported as one rounding of the coordinates' magnitude, never as 0). Otherwise the closest pair is among the 9 edge pairs and the
 /// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
 /// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
@@ -173,11 +173,11 @@ fn closest(
     // vertex nearest the plane; if that vertex projects inside the face, this is the distance.
     if let Some((d2, j, k)) = fa.nearest_vertex_if_one_side(a, &ea, b) {
         let foot = b[j] - fa.n * k;
-        return vertex_face(d2, fa.n * k, foot, b[j]);
+        return vertex_face(a, b, d2, fa.n * k, foot, b[j]);
     }
     if let Some((d2, i, k)) = fb.nearest_vertex_if_one_side(b, &eb, a) {
         let foot = a[i] - fb.n * k;
-        return vertex_face(d2, fb.n * k, a[i], foot);
+        return vertex_face(a, b, d2, fb.n * k, a[i], foot);
     }
     let mut best = f64::INFINITY;
     let mut feature = Feature::Edges(0, 0, 0.0, 0.0);
@@ -263,18 +263,41 @@ fn finish(
         Feature::VertexOfB(j, n, k) => (b[j] - n * k, b[j]),
         Feature::VertexOfA(i, n, k) => (a[i], a[i] - n * k),
     };
-    let distance = length(&gap, d2);
-    // A separation below rounding: report the single point the contract promises for distance 0.
-    let q = if distance == 0.0 { p } else { q };
-    ClosestPoints { distance, p, q }
+    ClosestPoints {
+        distance: separation(a, b, &gap, d2),
+        p,
+        q,
+    }
 }
 
 /// The answer for a vertex over a face: squared distance, gap `p - q`, and the points.
 #[inline]
-fn vertex_face(d2: f64, gap: Vec3, p: Vec3, q: Vec3) -> ClosestPoints {
-    let distance = length(&gap, d2);
-    let q = if distance == 0.0 { p } else { q };
-    ClosestPoints { distance, p, q }
+fn vertex_face(a: &Tri, b: &Tri, d2: f64, gap: Vec3, p: Vec3, q: Vec3) -> ClosestPoints {
+    ClosestPoints {
+        distance: separation(a, b, &gap, d2),
+        p,
+        q,
+    }
+}
+
+/// The distance of triangles found apart, from their closest points' gap and its squared length:
+/// never 0, which is kept for triangles that share a point (decided exactly). A gap that rounds to
+/// 0 is below the rounding of the coordinates: it is reported as one rounding of them.
+#[inline]
+fn separation(a: &Tri, b: &Tri, gap: &Vec3, d2: f64) -> f64 {
+    let distance = length(gap, d2);
+    if distance > 0.0 {
+        distance
+    } else {
+        below_rounding(a, b)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn below_rounding(a: &Tri, b: &Tri) -> f64 {
+    let m = max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]]);
+    (f64::EPSILON * m).max(f64::from_bits(1))
 }
 
 /// The plane of a triangle `t` and the other triangle's vertices relative to it.
