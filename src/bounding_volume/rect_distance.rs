@@ -315,9 +315,14 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
     // between consecutive knots, and monotone overall, so a knot outside the current bracket never
     // matters.
     let (mut s_lo, mut g_lo, mut s_hi, mut g_hi) = (0.0, g0, 1.0, g1);
-    let mut knot = |s: f64| {
+    let mut knot = |s: f64, k: usize| {
         if s > s_lo && s < s_hi {
-            let g = offset(&(p + d * s), l).dot(d);
+            // At the knot, coordinate `k` is on the rectangle's border: its offset is 0. Computed,
+            // it is a rounding residual, which times a long edge's slope can outweigh the slope of
+            // an edge nearly parallel to the rectangle and move the minimum far along the edge.
+            let mut o = offset(&(p + d * s), l);
+            o[k] = 0.0;
+            let g = o.dot(d);
             if g < 0.0 {
                 (s_lo, g_lo) = (s, g);
             } else {
@@ -327,13 +332,13 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
     };
     if d.x != 0.0 {
         let inv = 1.0 / d.x;
-        knot(-p.x * inv);
-        knot((l[0] - p.x) * inv);
+        knot(-p.x * inv, 0);
+        knot((l[0] - p.x) * inv, 0);
     }
     if d.y != 0.0 {
         let inv = 1.0 / d.y;
-        knot(-p.y * inv);
-        knot((l[1] - p.y) * inv);
+        knot(-p.y * inv, 1);
+        knot((l[1] - p.y) * inv, 1);
     }
     // g_lo < 0 <= g_hi, so the fraction is in [0, 1].
     let s = s_lo + (s_hi - s_lo) * (-g_lo / (g_hi - g_lo));
