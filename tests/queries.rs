@@ -601,7 +601,6 @@ fn extreme_tolerances_and_error_bounds() {
 #[test]
 fn degenerate_triangle_collides_with_every_volume() {
     use pqp::geometry::tri_overlap;
-    use pqp::{CollisionVolume, VolumeKind};
     let segment = [[0.25, 0.75, 0.0], [0.0, 0.5, 0.0], [0.0, 0.5, 0.0]];
     let others = [
         [[-0.5, 0.5, 0.0], [0.0, -1.0, 0.0], [0.25, 0.5, 0.0]],
@@ -616,31 +615,14 @@ fn degenerate_triangle_collides_with_every_volume() {
         .map(|j| (0, j as i32))
         .collect();
     assert_eq!(truth.len(), 4, "the reference: all four touch the segment");
-    for kind in [
-        VolumeKind::Rss,
-        VolumeKind::Pss,
-        VolumeKind::Lss,
-        VolumeKind::Hybrid,
-    ] {
-        for collision in [CollisionVolume::Obb, CollisionVolume::Ssv] {
-            let model = |tris: &[[[f64; 3]; 3]]| {
-                let mut m = Model::new();
-                m.set_volume(kind).unwrap();
-                m.set_collision_volume(collision).unwrap();
-                m.begin(tris.len()).unwrap();
-                for (i, t) in tris.iter().enumerate() {
-                    m.add_triangle(t[0], t[1], t[2], i as i32).unwrap();
-                }
-                m.end().unwrap();
-                m
-            };
-            let (a, b) = (model(&[segment]), model(&others));
-            let id = Pose::identity();
-            let r = collide(&a, &id, &b, &id, ContactMode::All).unwrap();
-            let mut got: Vec<(i32, i32)> = r.pairs().iter().map(|p| (p.id1, p.id2)).collect();
-            got.sort_unstable();
-            assert_eq!(got, truth, "{kind:?} {collision:?}");
-        }
+    for (kind, collision) in all_volumes() {
+        let (a, b) = (
+            model_with(&[segment], kind, collision),
+            model_with(&others, kind, collision),
+        );
+        let id = Pose::identity();
+        let r = collide(&a, &id, &b, &id, ContactMode::All).unwrap();
+        assert_eq!(pair_ids(r.pairs()), truth, "{kind:?} {collision:?}");
     }
 }
 
