@@ -10,8 +10,9 @@ use crate::math::Vec3;
 ///
 /// Contact is decided exactly (as [`tri_overlap`](super::tri_overlap), with which this function
 /// agrees: the distance is 0 exactly when the triangles share a point; a separation that rounds to
-/// 0 is reported as one rounding of the coordinates' magnitude, never as 0). Otherwise the closest pair is among the 9 edge pairs and the
-/// 6 vertex-against-face pairs, each computed to a few roundings of the triangles' size.
+/// 0 is reported as one rounding of the coordinates' magnitude, never as 0). Otherwise the closest
+/// pair is among the 9 edge pairs and the 6 vertex-against-face pairs, each computed to a few
+/// roundings of the triangles' size.
 /// Degenerate triangles count as the segment or point they span.
 pub fn tri_distance(a: &Tri, b: &Tri) -> ClosestPoints {
     match tri_distance_below(a, b, f64::INFINITY, Plane::A, false) {
