@@ -5,6 +5,8 @@
 #     exports exactly the functions pqp/pqp.h declares;
 #   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all three),
 #     with -Wall -Wextra -pedantic -Werror;
+#   - the PQP 1.3 programs of c_api_tests/pqp13 (programs.txt), each in every standard listed,
+#     with pkg-config, and with find_package(pqp) in its first;
 #   - programs built with `pkg-config --cflags --libs pqp`, with pkg-config --static against
 #     libpqp.a, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
 #     -I<prefix>/include -L<prefix>/lib -lPQP, all of which must run and answer correctly.
@@ -21,6 +23,11 @@ cxx=$4
 cmake=$5
 libdir=${6:-lib}
 includedir=${7:-include}
+
+# The repository (for the PQP 1.3 programs of c_api_tests/pqp13 and the brute-force referee).
+repo=$(cd "$consumer_src/../.." && pwd)
+pqp13=$repo/c_api_tests/pqp13
+harness=$repo/c_tests/harness
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/pqp-consumer.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -43,7 +50,7 @@ inc=$prefix/$includedir
 
 step "installed files"
 for f in "$lib"/{libpqp.so.1.0.0,libpqp.so.1,libpqp.so,libpqp.a,libPQP.so,libPQP.a} \
-    "$inc"/{pqp/pqp.h,PQP.h,PQP_Compile.h} "$lib"/pkgconfig/pqp.pc \
+    "$inc"/{pqp/pqp.h,pqp/pqp_cxx.h,PQP.h,PQP_Compile.h,PQP_Internal.h,Tri.h,BV.h,MatVec.h,TriDist.h} "$lib"/pkgconfig/pqp.pc \
     "$lib"/cmake/pqp/{pqpConfig.cmake,pqpConfigVersion.cmake}; do
     [[ -e $f ]] || fail "missing $f"
 done
@@ -72,8 +79,8 @@ step "every header compiles alone"
 printf '#include <pqp/pqp.h>\n' >h_c.c
 "$cc" -std=c99 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
 "$cc" -std=c11 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
-for std in c++11 c++14 c++17 c++20; do
-    for h in pqp/pqp.h PQP.h PQP_Compile.h; do
+for std in c++98 c++11 c++14 c++17 c++20; do
+    for h in pqp/pqp.h pqp/pqp_cxx.h PQP.h PQP_Compile.h PQP_Internal.h Tri.h BV.h MatVec.h TriDist.h; do
         printf '#include <%s>\n' "$h" >h_cxx.cpp
         "$cxx" -std=$std "${warn[@]}" -I"$inc" -c h_cxx.cpp -o h_cxx.o || fail "$h as $std"
     done
@@ -102,10 +109,32 @@ step "PQP 1.3 style: -I.. -L.. -lPQP"
 readelf -d legacy_lPQP | grep -q 'NEEDED.*\[libpqp\.so\.1\]' || fail "legacy_lPQP does not need libpqp.so.1"
 LD_LIBRARY_PATH=$lib ./legacy_lPQP
 
+step "PQP 1.3 programs with pkg-config, in every standard programs.txt lists"
+while read -r name stds; do
+    [[ -z $name || $name == \#* ]] && continue
+    flags=()
+    for w in $stds; do
+        [[ $w == -* ]] && flags+=("$w")
+    done
+    for std in $stds; do
+        [[ $std == -* ]] && continue
+        # shellcheck disable=SC2046 # word splitting of pkg-config's flags is intended
+        "$cxx" -std=c++$std "${warn[@]}" "${flags[@]}" -I"$harness" "$pqp13/$name.cpp" \
+            $(pkg-config --cflags --libs pqp) -o "pqp13_${name}_$std" || fail "$name as c++$std"
+        LD_LIBRARY_PATH=$lib "./pqp13_${name}_$std" | tail -n 1 | grep -q 'all checks passed' ||
+            fail "$name as c++$std"
+        echo "$name c++$std: ok"
+    done
+done <"$pqp13/programs.txt"
+
 step "find_package(pqp) + PQP::PQP"
 "$cmake" -S src -B cmake-build -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx"
+    -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DPQP13_DIR="$pqp13" -DPQP_HARNESS_DIR="$harness"
 "$cmake" --build cmake-build
+for exe in cmake-build/pqp13_*; do
+    "$exe" | tail -n 1 | grep -q 'all checks passed' || fail "$exe (find_package)"
+done
 ./cmake-build/consumer_c
 ./cmake-build/consumer_legacy
 ./cmake-build/consumer_static

@@ -5,7 +5,7 @@
 
 mod c_toolchain;
 
-use c_toolchain::{build_program, build_static_program, root, run_program};
+use c_toolchain::{build_program, build_program_with, build_static_program, root, run_program};
 
 fn c_program(name: &str) {
     let exe = build_program(&root().join(format!("c_api_tests/{name}.c")), "c99", name);
@@ -59,6 +59,36 @@ fn pqp_h_extensions() {
     );
     let out = run_program(&exe);
     assert!(out.contains("all checks passed"), "{out}");
+}
+
+/// PQP 1.3 programs, one per pattern real PQP code uses (scope-qualified names, result members, model
+/// internals, copies, build codes, float PQP_REAL, every public member), each in the C++ standards
+/// `c_api_tests/pqp13/programs.txt` lists for it.
+#[test]
+fn pqp13_programs_in_their_standards() {
+    let dir = root().join("c_api_tests/pqp13");
+    let manifest = std::fs::read_to_string(dir.join("programs.txt")).expect("programs.txt");
+    let mut built = 0;
+    for line in manifest.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+        let mut words = line.split_whitespace();
+        let name = words.next().expect("a program name");
+        let (stds, flags): (Vec<&str>, Vec<&str>) = words.partition(|w| !w.starts_with('-'));
+        let mut extra: Vec<String> = flags.iter().map(|f| f.to_string()).collect();
+        extra.push(format!("-I{}", root().join("c_tests/harness").display()));
+        for std in stds {
+            let out = format!("pqp13_{name}_cxx{std}");
+            let exe = build_program_with(
+                &dir.join(format!("{name}.cpp")),
+                &format!("c++{std}"),
+                &out,
+                &extra,
+            );
+            let stdout = run_program(&exe);
+            assert!(stdout.contains("all checks passed"), "{out}: {stdout}");
+            built += 1;
+        }
+    }
+    assert!(built >= 7, "programs.txt lists {built} builds");
 }
 
 /// The static library links with exactly the system libraries pqp.pc lists as private.

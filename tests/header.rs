@@ -213,13 +213,50 @@ fn c_header_compiles_alone_in_c99_and_c11() {
     compile_header_alone("pqp/pqp.h", false, "c11");
 }
 
+/// The C++ headers: PQP 1.3's five, the two its programs also include, and the C interface.
+const CXX_HEADERS: [&str; 9] = [
+    "pqp/pqp.h",
+    "pqp/pqp_cxx.h",
+    "PQP.h",
+    "PQP_Compile.h",
+    "PQP_Internal.h",
+    "Tri.h",
+    "BV.h",
+    "MatVec.h",
+    "TriDist.h",
+];
+
 #[test]
 fn headers_compile_alone_in_every_cxx_standard() {
     for std in ["c++98", "c++11", "c++14", "c++17", "c++20"] {
-        for header in ["pqp/pqp.h", "PQP.h", "PQP_Compile.h"] {
+        for header in CXX_HEADERS {
             compile_header_alone(header, true, std);
         }
     }
+}
+
+/// PQP 1.3 code needs the status codes and contact flags as `const int` variables in C++:
+/// pqp/pqp_cxx.h must turn every one of pqp.h's macros for them into a constant (a code added to the
+/// C layer and forgotten there would stay a macro, and `::PQP_ERR_NEW` would not compile).
+#[test]
+fn cxx_header_declares_every_code_and_flag_as_a_constant() {
+    let cxx = std::fs::read_to_string(root().join("include/pqp/pqp_cxx.h")).expect("pqp_cxx.h");
+    let mut checked = 0;
+    for line in checked_in().lines() {
+        let Some(rest) = line.strip_prefix("#define ") else { continue };
+        let name = rest.split_whitespace().next().unwrap_or("");
+        let is_code = name == "PQP_OK" || name.starts_with("PQP_ERR_");
+        if !(is_code || name.ends_with("_CONTACTS") || name.ends_with("_CONTACT")) {
+            continue;
+        }
+        assert!(cxx.contains(&format!("#undef {name}\n")), "pqp_cxx.h does not #undef {name}");
+        assert!(
+            cxx.contains(&format!("const int {name} = ")),
+            "pqp_cxx.h does not declare const int {name}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "only {checked} codes and flags found in pqp.h");
 }
 
 /// Every exported function runs its body through the one boundary helper (`boundary`, or `status`

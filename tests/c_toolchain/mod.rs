@@ -97,12 +97,18 @@ pub fn include_dir() -> PathBuf {
 /// Compiles `source` (C if it ends in .c, else C++) with `std` and the project's warnings into an
 /// executable linked with the shared library, and returns its path.
 pub fn build_program(source: &Path, std: &str, out_name: &str) -> PathBuf {
+    build_program_with(source, std, out_name, &[])
+}
+
+/// [`build_program`] with extra compiler arguments (include directories, definitions).
+pub fn build_program_with(source: &Path, std: &str, out_name: &str, extra: &[String]) -> PathBuf {
     let cpp = !matches!(source.extension().and_then(|e| e.to_str()), Some("c"));
     let out = scratch("bin").join(out_name);
     let lib = lib_dir();
     let mut cmd = compiler(cpp);
     cmd.arg(format!("-std={std}"))
         .args(WARNINGS)
+        .args(extra)
         .arg("-I")
         .arg(include_dir())
         .arg(source)
