@@ -95,7 +95,14 @@ pub(crate) struct Bvh {
     pub verts: Vec<Vec3>,
     /// Each triangle's vertices, by index into `verts`, in leaf order.
     pub faces: Vec<[u32; 3]>,
+    /// Each triangle's caller id, in leaf order.
     pub ids: Vec<i32>,
+    /// Insertion order: `added[t]` is the position among the triangles as they were added (to
+    /// [`Bvh::build`], in the order of [`Model::add_triangle`](crate::model::Model::add_triangle)
+    /// calls) of the triangle in leaf slot `t`. A permutation of `0..num_tris()`. It maps what
+    /// the hierarchy knows back to what the caller gave: PQP 1.3's view of a model lists triangles
+    /// in the order added, and refitting takes new vertices in that order.
+    pub added: Vec<u32>,
     /// Which volume this model offers the collision query.
     pub collision: CollisionVolume,
     /// A bound on the scale of every node's swept sphere volume, a leaf's included (the magnitudes
@@ -135,6 +142,7 @@ impl Bvh {
             + self.verts.capacity() * std::mem::size_of::<Vec3>()
             + self.faces.capacity() * std::mem::size_of::<[u32; 3]>()
             + self.ids.capacity() * std::mem::size_of::<i32>()
+            + self.added.capacity() * std::mem::size_of::<u32>()
             + std::mem::size_of::<Bvh>()
     }
 
