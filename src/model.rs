@@ -37,14 +37,16 @@ pub enum CollisionVolume {
     Ssv,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum State {
-    /// Fresh or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
-    Empty,
-    /// Between `begin` and `end`.
-    Building,
+/// Where a model is in PQP's build protocol ([`Model::build_state`]); PQP 1.3's `build_state`,
+/// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BuildState {
+    /// Fresh, or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
+    Empty = 0,
+    /// Begun (by `begin`, or by an `add` on an empty model), and no successful `end` since.
+    Begun = 1,
     /// `end` succeeded: the hierarchy is built and the model is immutable.
-    Built,
+    Built = 2,
 }
 
 /// A triangle model, built by [`begin`](Model::begin), [`add_triangle`](Model::add_triangle) and
@@ -63,7 +65,7 @@ enum State {
 /// ```
 #[derive(Debug)]
 pub struct Model {
-    state: State,
+    state: BuildState,
     /// Triangles in the order added, until `end` hands them to the hierarchy.
     pending: Vec<(Tri, i32)>,
     bvh: Option<Bvh>,
@@ -86,7 +88,7 @@ impl Model {
     /// An empty model.
     pub fn new() -> Model {
         Model {
-            state: State::Empty,
+            state: BuildState::Empty,
             pending: Vec::new(),
             bvh: None,
             uid: 0,
@@ -112,7 +114,7 @@ impl Model {
     /// assert!(m.set_volume(VolumeKind::Rss).is_err());
     /// ```
     pub fn set_volume(&mut self, volume: VolumeKind) -> Result<(), Error> {
-        if self.state == State::Built {
+        if self.state == BuildState::Built {
             return Err(Error::BuildOutOfSequence);
         }
         self.volume = volume;
@@ -123,7 +125,7 @@ impl Model {
     /// [`CollisionVolume::Obb`]). As [`set_volume`](Model::set_volume): before `end`, kept across
     /// builds, `Err(BuildOutOfSequence)` on a built model.
     pub fn set_collision_volume(&mut self, collision: CollisionVolume) -> Result<(), Error> {
-        if self.state == State::Built {
+        if self.state == BuildState::Built {
             return Err(Error::BuildOutOfSequence);
         }
         self.collision = collision;
@@ -145,13 +147,13 @@ impl Model {
     /// On a model that is not fresh (begun, or built) the model is cleared and
     /// `Err(BuildOutOfSequence)` is returned, as PQP does; the model is then ready for `add_triangle`.
     pub fn begin(&mut self, capacity_hint: usize) -> Result<(), Error> {
-        let was_empty = self.state == State::Empty;
+        let was_empty = self.state == BuildState::Empty;
         self.pending = Vec::new();
         self.bvh = None;
         self.uid = 0;
         // A hint is only a hint: a huge one must not abort the process.
         let _ = self.pending.try_reserve(capacity_hint.min(1 << 24));
-        self.state = State::Building;
+        self.state = BuildState::Begun;
         if was_empty {
             Ok(())
         } else {
@@ -163,8 +165,10 @@ impl Model {
     ///
     /// Before `begin` it begins implicitly (PQP's behaviour). After `end` it is ignored and returns
     /// `Err(BuildOutOfSequence)`. A vertex with a NaN, infinite, or huge (> [`MAX_COORDINATE`])
-    /// coordinate is refused with `Err(NonFiniteCoordinate)`: the triangle is not stored and the model
-    /// stays usable. Degenerate triangles (segments, points) are accepted.
+    /// coordinate is refused with `Err(NonFiniteCoordinate)`: the triangle is not stored and the
+    /// model stays usable, with the triangles it had; an empty model is begun all the same (the
+    /// implicit begin comes first), so [`build_state`](Model::build_state) is then
+    /// [`BuildState::Begun`]. Degenerate triangles (segments, points) are accepted.
     pub fn add_triangle(
         &mut self,
         p1: [f64; 3],
@@ -173,9 +177,9 @@ impl Model {
         id: i32,
     ) -> Result<(), Error> {
         match self.state {
-            State::Built => return Err(Error::BuildOutOfSequence),
-            State::Empty => self.state = State::Building,
-            State::Building => {}
+            BuildState::Built => return Err(Error::BuildOutOfSequence),
+            BuildState::Empty => self.state = BuildState::Begun,
+            BuildState::Begun => {}
         }
         let ok = p1
             .iter()
@@ -198,20 +202,21 @@ impl Model {
 
     /// Builds the bounding-volume hierarchy. After it the model is immutable and can be queried.
     ///
-    /// `Err(BuildOutOfSequence)` if already built or never begun; `Err(BuildEmptyModel)` if begun
-    /// but no triangle was added (the model stays unusable until triangles are added and `end`
-    /// succeeds); `Err(ModelOutOfMemory)` if the hierarchy could not
-    /// be allocated.
+    /// As PQP 1.3's `EndModel`: `Err(BuildOutOfSequence)` only if already built (the model stays
+    /// built); `Err(BuildEmptyModel)` if the model holds no triangle, begun or not (a fresh model
+    /// included): it stays unbuilt, in the state it was in, until triangles are added and `end`
+    /// succeeds; `Err(ModelOutOfMemory)` if the hierarchy could not be allocated.
     pub fn end(&mut self) -> Result<(), Error> {
         match self.state {
-            State::Built | State::Empty => return Err(Error::BuildOutOfSequence),
-            State::Building if self.pending.is_empty() => return Err(Error::BuildEmptyModel),
-            State::Building => {}
+            BuildState::Built => return Err(Error::BuildOutOfSequence),
+            BuildState::Empty => return Err(Error::BuildEmptyModel),
+            BuildState::Begun if self.pending.is_empty() => return Err(Error::BuildEmptyModel),
+            BuildState::Begun => {}
         }
         let tris = std::mem::take(&mut self.pending);
         let bvh = Bvh::build(tris, self.volume, self.collision)?;
         self.bvh = Some(bvh);
-        self.state = State::Built;
+        self.state = BuildState::Built;
         self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);
         Ok(())
     }
@@ -237,7 +242,22 @@ impl Model {
 
     /// Whether `end` has succeeded.
     pub fn is_built(&self) -> bool {
-        self.state == State::Built
+        self.state == BuildState::Built
+    }
+
+    /// Where the model is in the build protocol.
+    ///
+    /// ```
+    /// use pqp::{BuildState, Model};
+    /// let mut m = Model::new();
+    /// assert_eq!(m.build_state(), BuildState::Empty);
+    /// m.add_triangle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0).unwrap();
+    /// assert_eq!(m.build_state(), BuildState::Begun);
+    /// m.end().unwrap();
+    /// assert_eq!(m.build_state(), BuildState::Built);
+    /// ```
+    pub fn build_state(&self) -> BuildState {
+        self.state
     }
 
     /// Number of triangles stored (added so far, or in the built model).
@@ -258,7 +278,7 @@ impl Model {
     /// The hierarchy of a built model.
     pub(crate) fn bvh(&self) -> Result<&Bvh, Error> {
         match (&self.state, &self.bvh) {
-            (State::Built, Some(b)) => Ok(b),
+            (BuildState::Built, Some(b)) => Ok(b),
             _ => Err(Error::UnprocessedModel),
         }
     }

@@ -92,7 +92,9 @@ pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, p1, p2 or p3 is NULL;
 ///         PQP_ERR_BUILD_OUT_OF_SEQUENCE after a successful pqp_model_end (the triangle is ignored);
 ///         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
-///         magnitude (the triangle is refused; the model stays usable);
+///         magnitude (the triangle is not stored; the model keeps the triangles it had and stays
+///         usable; an empty model is begun all the same, as the implicit begin comes first:
+///         pqp_model_build_state then gives PQP_BUILD_STATE_BEGUN);
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY if the triangle could not be stored;
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
@@ -116,10 +118,11 @@ pub unsafe extern "C" fn pqp_model_add_tri(
 ///
 /// @param m  the model.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model
-///         is already built or was never begun (no pqp_model_begin or pqp_model_add_tri);
-///         PQP_ERR_BUILD_EMPTY_MODEL if no triangle was added (the model stays unbuilt: queries
-///         return PQP_ERR_UNPROCESSED_MODEL); PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could
-///         not be allocated; PQP_ERR_INTERNAL on an internal fault.
+///         is already built (it stays built); PQP_ERR_BUILD_EMPTY_MODEL if the model holds no
+///         triangle, whether begun or not (a fresh model included; as PQP 1.3): the model stays
+///         unbuilt, in its state (queries return PQP_ERR_UNPROCESSED_MODEL);
+///         PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could not be allocated; PQP_ERR_INTERNAL
+///         on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
