@@ -41,7 +41,8 @@ pub enum CollisionVolume {
 /// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum BuildState {
-    /// Fresh, or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
+    /// Fresh: `begin` expected (an `add` begins implicitly, as PQP does). `begin` clears a model
+    /// and begins it, so only a fresh model is empty.
     Empty = 0,
     /// Begun (by `begin`, or by an `add` on an empty model), and no successful `end` since.
     Begun = 1,
@@ -63,13 +64,18 @@ pub enum BuildState {
 /// assert_eq!(m.num_triangles(), 1);
 /// assert!(m.is_built());
 /// ```
-#[derive(Debug)]
+///
+/// `clone` (or [`try_clone`](Model::try_clone), which reports a failed allocation instead of
+/// aborting) gives a deep, independent copy in the same state.
+#[derive(Clone, Debug)]
 pub struct Model {
     state: BuildState,
     /// Triangles in the order added, until `end` hands them to the hierarchy.
     pending: Vec<(Tri, i32)>,
     bvh: Option<Bvh>,
-    /// Identifies this build of this model, for the triangle cache kept in distance results.
+    /// Identifies this build of this model, for the triangle cache kept in distance results. A
+    /// clone keeps it: its hierarchy is the same, bit for bit, so what a result cached for one
+    /// (triangle slots, node pairs) holds for the other.
     uid: u64,
     /// The hierarchy's volumes, chosen before `end`.
     volume: VolumeKind,
@@ -221,6 +227,32 @@ impl Model {
         Ok(())
     }
 
+    /// A deep copy of the model in its state (empty, being built, or built; the volume choices
+    /// too), as `clone` makes it, but `Err(ModelOutOfMemory)` when its storage cannot be allocated
+    /// (`clone` aborts the process then). The copy answers every query exactly as the original;
+    /// building or dropping either never affects the other.
+    ///
+    /// ```
+    /// use pqp::Model;
+    /// let a = Model::from_triangles([([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 4)]).unwrap();
+    /// let b = a.try_clone().unwrap();
+    /// drop(a);
+    /// assert!(b.is_built());
+    /// ```
+    pub fn try_clone(&self) -> Result<Model, Error> {
+        Ok(Model {
+            state: self.state,
+            pending: try_copy(&self.pending)?,
+            bvh: match &self.bvh {
+                Some(b) => Some(b.try_clone()?),
+                None => None,
+            },
+            uid: self.uid,
+            volume: self.volume,
+            collision: self.collision,
+        })
+    }
+
     /// Builds a model from `(p1, p2, p3, id)` triangles in one call.
     ///
     /// ```
@@ -287,4 +319,13 @@ impl Model {
     pub(crate) fn uid(&self) -> u64 {
         self.uid
     }
+}
+
+/// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
+pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(v.len())
+        .map_err(|_| Error::ModelOutOfMemory)?;
+    out.extend_from_slice(v);
+    Ok(out)
 }

@@ -180,6 +180,24 @@
 #define PQP_COLLIDE_SSV 1
 
 /**
+ * Build state (pqp_model_build_state): fresh or cleared, no build begun (PQP 1.3's name and
+ * value).
+ */
+#define PQP_BUILD_STATE_EMPTY 0
+
+/**
+ * Build state (pqp_model_build_state): begun (by pqp_model_begin, or by pqp_model_add_tri on an
+ * empty model) and not built since (PQP 1.3's name and value).
+ */
+#define PQP_BUILD_STATE_BEGUN 1
+
+/**
+ * Build state (pqp_model_build_state): built by a successful pqp_model_end (PQP 1.3's name and
+ * value).
+ */
+#define PQP_BUILD_STATE_PROCESSED 2
+
+/**
  * Feature kind: a vertex (see pqp_convex_result_feature1_kind).
  */
 #define PQP_CONVEX_VERTEX 0
@@ -296,6 +314,34 @@ struct pqp_model *pqp_model_create(void);
  * Thread safety: must not run concurrently with any other call using m.
  */
 void pqp_model_destroy(struct pqp_model *m);
+
+/**
+ * Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the
+ * triangles added so far; the copy can go on being built), or built (the copy is built, with the
+ * same hierarchy bit for bit, and answers every query exactly as m does). The volume choices are
+ * copied too. Building, rebuilding or destroying either model never affects the other.
+ *
+ * @param out  receives the copy (free it with pqp_model_destroy), or NULL on any error.
+ * @param m    the model to copy.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if out or m is NULL; PQP_ERR_MODEL_OUT_OF_MEMORY if the
+ *         copy could not be allocated; PQP_ERR_INTERNAL on an internal fault (*out is then NULL).
+ * Thread safety: may run concurrently with queries and getters on m (a built model may be copied
+ *                while other threads query it), not with build calls on m.
+ */
+int pqp_model_clone(struct pqp_model **out, const struct pqp_model *m);
+
+/**
+ * Where a model is in PQP's build protocol (PQP 1.3's build_state).
+ *
+ * @param m  the model, or NULL.
+ * @return PQP_BUILD_STATE_EMPTY (0) for a fresh model (pqp_model_end leaves it so; as
+ *         pqp_model_begin clears a model and begins it, no other model is empty);
+ *         PQP_BUILD_STATE_BEGUN (1) after pqp_model_begin or pqp_model_add_tri (even one that
+ *         refused its triangle) until a successful pqp_model_end; PQP_BUILD_STATE_PROCESSED (2)
+ *         once built; 0 if m is NULL.
+ * Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+ */
+int pqp_model_build_state(const struct pqp_model *m);
 
 /**
  * Starts building a model (PQP's BeginModel).

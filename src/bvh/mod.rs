@@ -18,10 +18,11 @@ mod build;
 pub(crate) use build::MAX_DEPTH;
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
+use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::RESCALE_HI;
 use crate::math::{frame_from, Mat3, RelPose, Vec3};
-use crate::model::CollisionVolume;
+use crate::model::{try_copy, CollisionVolume};
 
 /// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
 /// a leaf, holding triangle `-r - 1`.
@@ -88,7 +89,7 @@ impl Node {
 }
 
 /// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct Bvh {
     pub nodes: Vec<Node>,
     /// The distinct vertices.
@@ -134,6 +135,20 @@ impl Bvh {
         let posed = rel.rot.amax() * other.scale + rel.trans.amax();
         // The bound's own rounding is a few ulps: a relative margin of 1e-6 covers it.
         !self.tiny && self.scale <= RESCALE_HI && posed * (1.0 + 1e-6) <= RESCALE_HI
+    }
+
+    /// A deep copy, or `Err(ModelOutOfMemory)` (see [`Model::try_clone`](crate::Model::try_clone)).
+    pub fn try_clone(&self) -> Result<Bvh, Error> {
+        Ok(Bvh {
+            nodes: try_copy(&self.nodes)?,
+            verts: try_copy(&self.verts)?,
+            faces: try_copy(&self.faces)?,
+            ids: try_copy(&self.ids)?,
+            added: try_copy(&self.added)?,
+            collision: self.collision,
+            scale: self.scale,
+            tiny: self.tiny,
+        })
     }
 
     /// Bytes held by the hierarchy.

@@ -1,8 +1,11 @@
 //! Model handles and PQP's build protocol (begin, add triangles, end).
 
-use super::{boundary, deref, deref_mut, free_handle, into_handle, read_doubles, status};
+use super::{
+    boundary, code, deref, deref_mut, free_handle, into_handle, read_doubles, status,
+    PQP_ERR_INTERNAL,
+};
 use crate::error::Error;
-use crate::model::{CollisionVolume, Model, VolumeKind};
+use crate::model::{BuildState, CollisionVolume, Model, VolumeKind};
 use std::ffi::c_int;
 
 /// Volume choice (pqp_model_set_volume): rectangle swept spheres, PQP's choice and the default.
@@ -19,6 +22,15 @@ pub const PQP_BV_HYBRID: c_int = 3;
 pub const PQP_COLLIDE_OBB: c_int = 0;
 /// Collision volume choice (pqp_model_set_collision_volume): the model's swept sphere volumes.
 pub const PQP_COLLIDE_SSV: c_int = 1;
+/// Build state (pqp_model_build_state): fresh or cleared, no build begun (PQP 1.3's name and
+/// value).
+pub const PQP_BUILD_STATE_EMPTY: c_int = 0;
+/// Build state (pqp_model_build_state): begun (by pqp_model_begin, or by pqp_model_add_tri on an
+/// empty model) and not built since (PQP 1.3's name and value).
+pub const PQP_BUILD_STATE_BEGUN: c_int = 1;
+/// Build state (pqp_model_build_state): built by a successful pqp_model_end (PQP 1.3's name and
+/// value).
+pub const PQP_BUILD_STATE_PROCESSED: c_int = 2;
 
 /// A triangle model (opaque). Create with pqp_model_create, fill with pqp_model_begin,
 /// pqp_model_add_tri and pqp_model_end, free with pqp_model_destroy.
@@ -59,6 +71,75 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
     boundary((), || {}, || free_handle(m))
+}
+
+/// Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the
+/// triangles added so far; the copy can go on being built), or built (the copy is built, with the
+/// same hierarchy bit for bit, and answers every query exactly as m does). The volume choices are
+/// copied too. Building, rebuilding or destroying either model never affects the other.
+///
+/// @param out  receives the copy (free it with pqp_model_destroy), or NULL on any error.
+/// @param m    the model to copy.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if out or m is NULL; PQP_ERR_MODEL_OUT_OF_MEMORY if the
+///         copy could not be allocated; PQP_ERR_INTERNAL on an internal fault (*out is then NULL).
+/// Thread safety: may run concurrently with queries and getters on m (a built model may be copied
+///                while other threads query it), not with build calls on m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_clone(out: *mut *mut pqp_model, m: *const pqp_model) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || {
+            if !out.is_null() {
+                out.write(std::ptr::null_mut());
+            }
+        },
+        || code(clone_into(out, m)),
+    )
+}
+
+/// The body of pqp_model_clone: NULL in `out` until the copy is made, so that no error leaves a
+/// handle there.
+///
+/// # Safety
+/// `out` is NULL or points to a writable `pqp_model *`; `m` is NULL or a live handle.
+unsafe fn clone_into(out: *mut *mut pqp_model, m: *const pqp_model) -> Result<(), Error> {
+    if out.is_null() {
+        return Err(Error::NullPointer);
+    }
+    out.write(std::ptr::null_mut());
+    let copy = pqp_model {
+        model: deref(m)?.model.try_clone()?,
+    };
+    let h = into_handle(copy);
+    if h.is_null() {
+        return Err(Error::ModelOutOfMemory);
+    }
+    out.write(h);
+    Ok(())
+}
+
+/// Where a model is in PQP's build protocol (PQP 1.3's build_state).
+///
+/// @param m  the model, or NULL.
+/// @return PQP_BUILD_STATE_EMPTY (0) for a fresh model (pqp_model_end leaves it so; as
+///         pqp_model_begin clears a model and begins it, no other model is empty);
+///         PQP_BUILD_STATE_BEGUN (1) after pqp_model_begin or pqp_model_add_tri (even one that
+///         refused its triangle) until a successful pqp_model_end; PQP_BUILD_STATE_PROCESSED (2)
+///         once built; 0 if m is NULL.
+/// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_build_state(m: *const pqp_model) -> c_int {
+    boundary(
+        PQP_BUILD_STATE_EMPTY,
+        || {},
+        || {
+            deref(m).map_or(PQP_BUILD_STATE_EMPTY, |m| match m.model.build_state() {
+                BuildState::Empty => PQP_BUILD_STATE_EMPTY,
+                BuildState::Begun => PQP_BUILD_STATE_BEGUN,
+                BuildState::Built => PQP_BUILD_STATE_PROCESSED,
+            })
+        },
+    )
 }
 
 /// Starts building a model (PQP's BeginModel).
