@@ -315,6 +315,20 @@ impl Model {
         }
     }
 
+    /// Calls `put(k, triangle, id)` for every triangle the model holds (added so far, or built),
+    /// `k` being its position in the order added: each of `0..num_triangles()` once, in no
+    /// particular order.
+    pub(crate) fn for_each_added(&self, mut put: impl FnMut(usize, Tri, i32)) {
+        match &self.bvh {
+            Some(b) => b.for_each_added(put),
+            None => {
+                for (k, &(t, id)) in self.pending.iter().enumerate() {
+                    put(k, t, id);
+                }
+            }
+        }
+    }
+
     /// Identifies this build (distinct for every successful `end` in the process).
     pub(crate) fn uid(&self) -> u64 {
         self.uid

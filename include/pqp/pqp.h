@@ -255,6 +255,134 @@ typedef struct pqp_model pqp_model;
 typedef struct pqp_tolerance_result pqp_tolerance_result;
 
 /**
+ * A triangle as PQP 1.3's `Tri` holds it (pqp_model_tris): its vertices and the id given to
+ * pqp_model_add_tri.
+ */
+typedef struct pqp_tri {
+    /**
+     * First vertex (x, y, z in the model's frame).
+     */
+    double p1[3];
+    /**
+     * Second vertex.
+     */
+    double p2[3];
+    /**
+     * Third vertex.
+     */
+    double p3[3];
+    /**
+     * The caller's id.
+     */
+    int id;
+} pqp_tri;
+
+/**
+ * A bounding volume as PQP 1.3's `BV` holds it (pqp_model_bvs): a frame, a rectangle swept
+ * sphere and an oriented box on it, and where its children are.
+ *
+ * With R, Tr and To in model coordinates, the rectangle swept sphere is the set of points within
+ * r of { Tr + x * axis0 + y * axis1 : 0 <= x <= l[0], 0 <= y <= l[1] } and the box is
+ * { To + c0 * axis0 + c1 * axis1 + c2 * axis2 : |ci| <= d[i] }, axis i being column i of R. In
+ * pqp_model_bvs's array (as in PQP's) only the root's R, Tr and To are in model coordinates;
+ * every other volume's are relative to its parent's: with Ra, Tra, Toa a volume's values in
+ * model coordinates and Rp, Trp, Top its parent's, the array holds R = Rp^T Ra,
+ * Tr = Rp^T (Tra - Trp) and To = Rp^T (Toa - Top) (so Ra = Rp R, Tra = Rp Tr + Trp,
+ * Toa = Rp To + Top, composed from the root down). A model built with PQP_BV_PSS, PQP_BV_LSS or
+ * PQP_BV_HYBRID has point or segment cores in some volumes: rectangles with zero sides.
+ */
+typedef struct pqp_bv {
+    /**
+     * Orientation, row by row (R[row][col]): its columns are the volume's axes.
+     */
+    double R[3][3];
+    /**
+     * Rectangle swept sphere: the rectangle's corner.
+     */
+    double Tr[3];
+    /**
+     * Rectangle swept sphere: the rectangle's sides along the first two axes (>= 0).
+     */
+    double l[2];
+    /**
+     * Rectangle swept sphere: the radius (>= 0).
+     */
+    double r;
+    /**
+     * Oriented box: its centre.
+     */
+    double To[3];
+    /**
+     * Oriented box: its half extents along the axes (>= 0).
+     */
+    double d[3];
+    /**
+     * Where the children are: when first_child >= 0 they are at first_child and first_child + 1
+     * (both after this volume in the array); when first_child < 0 this is a leaf, holding
+     * triangle -first_child - 1 of pqp_model_tris (PQP's encoding).
+     */
+    int first_child;
+} pqp_bv;
+
+/**
+ * pqp_tri with float coordinates (pqp_model_tris_float), for code compiled with PQP_REAL float:
+ * the same values rounded to float (beyond float's range: +-infinity).
+ */
+typedef struct pqp_tri_float {
+    /**
+     * First vertex.
+     */
+    float p1[3];
+    /**
+     * Second vertex.
+     */
+    float p2[3];
+    /**
+     * Third vertex.
+     */
+    float p3[3];
+    /**
+     * The caller's id.
+     */
+    int id;
+} pqp_tri_float;
+
+/**
+ * pqp_bv with float values (pqp_model_bvs_float), for code compiled with PQP_REAL float: the
+ * same values rounded to float (beyond float's range: +-infinity).
+ */
+typedef struct pqp_bv_float {
+    /**
+     * Orientation, row by row (R[row][col]): its columns are the volume's axes.
+     */
+    float R[3][3];
+    /**
+     * Rectangle swept sphere: the rectangle's corner.
+     */
+    float Tr[3];
+    /**
+     * Rectangle swept sphere: the rectangle's sides.
+     */
+    float l[2];
+    /**
+     * Rectangle swept sphere: the radius.
+     */
+    float r;
+    /**
+     * Oriented box: its centre.
+     */
+    float To[3];
+    /**
+     * Oriented box: its half extents.
+     */
+    float d[3];
+    /**
+     * As in pqp_bv.
+     */
+    int first_child;
+} pqp_bv_float;
+
+/**
  * A colliding triangle pair: the id of the triangle of model 1 and of model 2, as given to
  * pqp_model_add_tri.
  */
@@ -439,7 +567,9 @@ int pqp_model_set_collision_volume(struct pqp_model *m, int volume);
 int pqp_model_num_tris(const struct pqp_model *m);
 
 /**
- * The memory a model holds, in bytes (triangles, hierarchy and bookkeeping).
+ * The memory a model holds, in bytes (triangles, hierarchy and bookkeeping), including PQP
+ * 1.3's view of it once asked for (pqp_model_tris, pqp_model_bvs and their float forms make it on
+ * their first call and keep it; a model never asked costs nothing for it).
  *
  * @param m  the model, or NULL.
  * @return the byte count; 0 if m is NULL.
@@ -455,6 +585,86 @@ uint64_t pqp_model_memory_usage(const struct pqp_model *m);
  * Thread safety: may run concurrently with queries and other getters on m, not with build calls.
  */
 int pqp_model_is_built(const struct pqp_model *m);
+
+/**
+ * PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
+ * id, as double.
+ *
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array. While a model is being built it holds the triangles added so
+ * far; a triangle refused by pqp_model_add_tri is not in it.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error). It stays valid, and its contents unchanged, until the next
+ *                  pqp_model_begin, pqp_model_add_tri or pqp_model_end on m, or
+ *                  pqp_model_destroy(m).
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, tris or num_tris is NULL;
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
+ */
+int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *num_tris);
+
+/**
+ * PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
+ * layout and frames (see pqp_bv).
+ *
+ * There are exactly 2 n - 1 volumes for n triangles. b[0] is the root. The children of a volume
+ * are at first_child and first_child + 1, both after it; they were given out depth first, as PQP
+ * did (when a volume is expanded its two children take the next two free slots, then the first
+ * child's subtree is laid out before the second's). A leaf's first_child is -(t + 1), t being its
+ * triangle's index in pqp_model_tris (the order added); a one-triangle model has one volume, a
+ * leaf with first_child -1. Each volume contains its triangles. Inner volumes are those the
+ * queries use; a leaf's are the rectangle around its triangle and the box on that rectangle's
+ * axes.
+ *
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array.
+ *
+ * @param m        the model.
+ * @param bvs      receives the array (owned by m; NULL on any error). It stays valid, and its
+ *                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri or
+ *                 pqp_model_end on m, or pqp_model_destroy(m).
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
+ *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
+ */
+int pqp_model_bvs(const struct pqp_model *m, const struct pqp_bv **bvs, int *num_bvs);
+
+/**
+ * As pqp_model_tris, with float coordinates (pqp_tri_float): for code compiled with PQP_REAL
+ * float. The values are pqp_model_tris's rounded to float. Kept apart from the double array.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error), valid as pqp_model_tris's.
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK, or as pqp_model_tris (PQP_ERR_NULL_POINTER, PQP_ERR_MODEL_OUT_OF_MEMORY,
+ *         PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_tris.
+ */
+int pqp_model_tris_float(const struct pqp_model *m,
+                         const struct pqp_tri_float **tris,
+                         int *num_tris);
+
+/**
+ * As pqp_model_bvs, with float values (pqp_bv_float): for code compiled with PQP_REAL float. The
+ * values are pqp_model_bvs's rounded to float. Kept apart from the double array.
+ *
+ * @param m        the model.
+ * @param bvs      receives the array (owned by m; NULL on any error), valid as pqp_model_bvs's.
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK, or as pqp_model_bvs (PQP_ERR_NULL_POINTER, PQP_ERR_UNPROCESSED_MODEL,
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_bvs.
+ */
+int pqp_model_bvs_float(const struct pqp_model *m, const struct pqp_bv_float **bvs, int *num_bvs);
 
 /**
  * Creates an empty collision result.

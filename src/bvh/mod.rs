@@ -14,8 +14,10 @@
 //! contiguous.
 
 mod build;
+mod pqp_view;
 
 pub(crate) use build::MAX_DEPTH;
+pub(crate) use pqp_view::PqpBv;
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;

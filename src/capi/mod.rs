@@ -26,6 +26,8 @@
 
 // In the order the header lists them (cbindgen follows the module order).
 mod model;
+// PQP 1.3's view of a model and its volumes' functions.
+mod legacy;
 // Collision.
 mod collide;
 // Separation distance.
@@ -40,6 +42,7 @@ mod misc;
 pub use collide::*;
 pub use convex::*;
 pub use distance::*;
+pub use legacy::*;
 pub use misc::*;
 pub use model::*;
 pub use tolerance::*;

@@ -1,5 +1,6 @@
 //! Model handles and PQP's build protocol (begin, add triangles, end).
 
+use super::legacy::LegacyView;
 use super::{
     boundary, code, deref, deref_mut, free_handle, into_handle, read_doubles, status,
     PQP_ERR_INTERNAL,
@@ -37,6 +38,8 @@ pub const PQP_BUILD_STATE_PROCESSED: c_int = 2;
 #[allow(non_camel_case_types)]
 pub struct pqp_model {
     pub(crate) model: Model,
+    /// PQP 1.3's view of the model, made on request (pqp_model_tris, pqp_model_bvs).
+    pub(crate) view: LegacyView,
 }
 
 // Queries take `const pqp_model *` from any number of threads at once: the model must be shareable.
@@ -58,6 +61,7 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
         || {
             into_handle(pqp_model {
                 model: Model::new(),
+                view: LegacyView::default(),
             })
         },
     )
@@ -107,8 +111,10 @@ unsafe fn clone_into(out: *mut *mut pqp_model, m: *const pqp_model) -> Result<()
         return Err(Error::NullPointer);
     }
     out.write(std::ptr::null_mut());
+    // The views are not copied: the copy makes its own on request.
     let copy = pqp_model {
         model: deref(m)?.model.try_clone()?,
+        view: LegacyView::default(),
     };
     let h = into_handle(copy);
     if h.is_null() {
@@ -156,6 +162,7 @@ pub unsafe extern "C" fn pqp_model_build_state(m: *const pqp_model) -> c_int {
 pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int) -> c_int {
     status(|| {
         let m = deref_mut(m)?;
+        m.view.begun();
         m.model.begin(usize::try_from(num_tris_hint).unwrap_or(0))
     })
 }
@@ -190,7 +197,12 @@ pub unsafe extern "C" fn pqp_model_add_tri(
     status(|| {
         let m = deref_mut(m)?;
         let (a, b, c) = (read_doubles(p1)?, read_doubles(p2)?, read_doubles(p3)?);
-        m.model.add_triangle(a, b, c, id)
+        let before = m.model.num_triangles();
+        let result = m.model.add_triangle(a, b, c, id);
+        let stored = m.model.num_triangles() > before;
+        m.view
+            .added(stored.then(|| ([a.into(), b.into(), c.into()], id)));
+        result
     })
 }
 
@@ -207,7 +219,10 @@ pub unsafe extern "C" fn pqp_model_add_tri(
 /// Thread safety: must not run concurrently with any other call using m.
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
-    status(|| deref_mut(m)?.model.end())
+    status(|| {
+        // PQP 1.3's views stay (see LegacyView).
+        deref_mut(m)?.model.end()
+    })
 }
 
 /// Chooses the swept sphere volume a model's hierarchy is built with, for distance and tolerance
@@ -278,14 +293,26 @@ pub unsafe extern "C" fn pqp_model_num_tris(m: *const pqp_model) -> c_int {
     )
 }
 
-/// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping).
+/// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping), including PQP
+/// 1.3's view of it once asked for (pqp_model_tris, pqp_model_bvs and their float forms make it on
+/// their first call and keep it; a model never asked costs nothing for it).
 ///
 /// @param m  the model, or NULL.
 /// @return the byte count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_memory_usage(m: *const pqp_model) -> u64 {
-    boundary(0, || {}, || deref(m).map_or(0, |m| m.model.memory_usage()))
+    boundary(
+        0,
+        || {},
+        || {
+            deref(m).map_or(0, |m| {
+                // The handle beyond the model, and the views' arrays.
+                let extra = std::mem::size_of::<pqp_model>() - std::mem::size_of::<Model>();
+                m.model.memory_usage() + (extra + m.view.memory_usage()) as u64
+            })
+        },
+    )
 }
 
 /// Whether a model is built (its last pqp_model_end succeeded) and can be queried.
