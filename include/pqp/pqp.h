@@ -667,6 +667,88 @@ int pqp_model_tris_float(const struct pqp_model *m,
 int pqp_model_bvs_float(const struct pqp_model *m, const struct pqp_bv_float **bvs, int *num_bvs);
 
 /**
+ * PQP 1.3's BV::FitToTris: fits a volume's rectangle swept sphere and box, on the axes given, to
+ * every vertex of some triangles.
+ *
+ * bv->R becomes O; Tr, l and r become the smallest rectangle swept sphere the library's fit finds
+ * on those axes (the rectangle on the first two) and To, d the tightest box on them, both
+ * containing every vertex of the triangles and given in the triangles' coordinates (as PQP's:
+ * pqp_model_bvs then makes them relative to the parent). bv->first_child is left as it was.
+ *
+ * @param bv        the volume to fill.
+ * @param O         the axes, 9 doubles row by row: its columns are the axes, which must be
+ *                  orthonormal (not checked: otherwise the volumes need not contain the vertices).
+ *                  PQP used the principal axes of the vertices, the first of largest spread.
+ * @param tris      the triangles, num_tris of them (their ids are not read).
+ * @param num_tris  how many, >= 1.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if bv, O or tris is NULL; PQP_ERR_INVALID_ARGUMENT if
+ *         num_tris < 1; PQP_ERR_NONFINITE_POSE if an entry of O is NaN, infinite or larger than
+ *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a vertex coordinate is;
+ *         PQP_ERR_OUT_OF_MEMORY if working storage could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault. On any error *bv is left unchanged.
+ * Thread safety: may be called from any thread at any time; bv must not be used by another
+ *                thread during the call.
+ */
+int pqp_bv_fit(struct pqp_bv *bv, const double *O, const struct pqp_tri *tris, int num_tris);
+
+/**
+ * PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
+ * first's frame by (R, T).
+ *
+ * Each box is taken in its volume's own frame, about that frame's origin: box 1 is
+ * { x : |x_i| <= b1->d[i] }, box 2 is { y : |y_i| <= b2->d[i] }, and a point y of box 2's frame
+ * is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold the
+ * volumes' frames and centres into R and T). The test is conservative: it never answers 0 for
+ * boxes that share a point (touching counts as overlapping); for boxes apart by less than a
+ * rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
+ *
+ * @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
+ * @param R        the rotation of box 2's frame in box 1's, 9 doubles row by row (a rotation; not
+ *                 checked).
+ * @param T        the translation, 3 doubles.
+ * @param b1, b2   the volumes (only d is read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_overlap(int *overlap,
+                   const double *R,
+                   const double *T,
+                   const struct pqp_bv *b1,
+                   const struct pqp_bv *b2);
+
+/**
+ * PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
+ * second placed in the first's frame by (R, T).
+ *
+ * Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
+ * rectangle 1 is [0, b1->l[0]] x [0, b1->l[1]] in the xy-plane of frame 1, rectangle 2 likewise
+ * in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
+ * the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
+ * the distance between the swept sphere volumes when they are apart, negative when they overlap
+ * deeper than touching (as PQP's). The volumes' R, Tr, To and d are not read (PQP's callers fold
+ * the volumes' frames and corners into R and T).
+ *
+ * @param distance  receives the distance (unchanged on any error).
+ * @param R         the rotation of frame 2 in frame 1, 9 doubles row by row (a rotation; not
+ *                  checked).
+ * @param T         the translation, 3 doubles.
+ * @param b1, b2    the volumes (only l and r are read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_distance(double *distance,
+                    const double *R,
+                    const double *T,
+                    const struct pqp_bv *b1,
+                    const struct pqp_bv *b2);
+
+/**
  * Creates an empty collision result.
  *
  * @return a new result, to be freed with pqp_collide_result_destroy; NULL only if memory could

@@ -6,11 +6,12 @@
 
 #![allow(non_snake_case)] // R, Tr, To, l, r, d: PQP's names, which the header shows.
 
-use super::{boundary, code, deref, pqp_model, PQP_ERR_INTERNAL};
+use super::{boundary, code, deref, pqp_model, read_doubles, PQP_ERR_INTERNAL};
+use crate::bounding_volume::{rect_distance, Obb, OverlapVolume, Ssv, SsvKind};
 use crate::bvh::PqpBv;
-use crate::error::Error;
+use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
-use crate::math::Vec3;
+use crate::math::{Mat3, Pose, RelPose, Vec3};
 use crate::model::Model;
 use std::ffi::c_int;
 use std::ptr;
@@ -426,4 +427,231 @@ pub unsafe extern "C" fn pqp_model_bvs_float(
             }))
         },
     )
+}
+
+/// The rotation and translation of PQP's BV functions, checked as a pose.
+///
+/// # Safety
+/// Each pointer is NULL or points to that many doubles.
+unsafe fn read_placement(R: *const f64, T: *const f64) -> Result<RelPose, Error> {
+    let pose: Pose = super::read_pose(R, T)?;
+    pose.validate()?;
+    Ok(RelPose {
+        rot: pose.rotation,
+        trans: pose.translation,
+    })
+}
+
+/// `v` if it is a size a volume can have: `Err(NonFiniteCoordinate)` for NaN, infinity or a
+/// magnitude beyond 1e150, `Err(InvalidArgument)` below 0.
+fn size(v: f64) -> Result<f64, Error> {
+    if !(v.is_finite() && v.abs() <= MAX_COORDINATE) {
+        Err(Error::NonFiniteCoordinate)
+    } else if v < 0.0 {
+        Err(Error::InvalidArgument)
+    } else {
+        Ok(v)
+    }
+}
+
+/// PQP 1.3's BV::FitToTris: fits a volume's rectangle swept sphere and box, on the axes given, to
+/// every vertex of some triangles.
+///
+/// bv->R becomes O; Tr, l and r become the smallest rectangle swept sphere the library's fit finds
+/// on those axes (the rectangle on the first two) and To, d the tightest box on them, both
+/// containing every vertex of the triangles and given in the triangles' coordinates (as PQP's:
+/// pqp_model_bvs then makes them relative to the parent). bv->first_child is left as it was.
+///
+/// @param bv        the volume to fill.
+/// @param O         the axes, 9 doubles row by row: its columns are the axes, which must be
+///                  orthonormal (not checked: otherwise the volumes need not contain the vertices).
+///                  PQP used the principal axes of the vertices, the first of largest spread.
+/// @param tris      the triangles, num_tris of them (their ids are not read).
+/// @param num_tris  how many, >= 1.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if bv, O or tris is NULL; PQP_ERR_INVALID_ARGUMENT if
+///         num_tris < 1; PQP_ERR_NONFINITE_POSE if an entry of O is NaN, infinite or larger than
+///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a vertex coordinate is;
+///         PQP_ERR_OUT_OF_MEMORY if working storage could not be allocated; PQP_ERR_INTERNAL on an
+///         internal fault. On any error *bv is left unchanged.
+/// Thread safety: may be called from any thread at any time; bv must not be used by another
+///                thread during the call.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_bv_fit(
+    bv: *mut pqp_bv,
+    O: *const f64,
+    tris: *const pqp_tri,
+    num_tris: c_int,
+) -> c_int {
+    boundary(PQP_ERR_INTERNAL, || {}, || code(fit(bv, O, tris, num_tris)))
+}
+
+/// The body of pqp_bv_fit.
+///
+/// # Safety
+/// As pqp_bv_fit's pointers.
+unsafe fn fit(
+    bv: *mut pqp_bv,
+    O: *const f64,
+    tris: *const pqp_tri,
+    num_tris: c_int,
+) -> Result<(), Error> {
+    if bv.is_null() || tris.is_null() {
+        return Err(Error::NullPointer);
+    }
+    let o: [f64; 9] = read_doubles(O)?;
+    let n = usize::try_from(num_tris)
+        .ok()
+        .filter(|&n| n > 0)
+        .ok_or(Error::InvalidArgument)?;
+    if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
+        return Err(Error::NonFinitePose);
+    }
+    let axes = Mat3::new(o[0], o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8]);
+    let mut points: Vec<Vec3> = Vec::new();
+    points
+        .try_reserve_exact(3 * n)
+        .map_err(|_| Error::OutOfMemory)?;
+    for i in 0..n {
+        let t = tris.add(i).read_unaligned();
+        for p in [t.p1, t.p2, t.p3] {
+            if !p.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
+                return Err(Error::NonFiniteCoordinate);
+            }
+            points.push(p.into());
+        }
+    }
+    let ssv = Ssv::fit(SsvKind::Rect, &axes, &points);
+    let obb = Obb::fit(&axes, &points);
+    let out = &mut *bv;
+    out.R = [[o[0], o[1], o[2]], [o[3], o[4], o[5]], [o[6], o[7], o[8]]];
+    out.Tr = ssv.origin.into();
+    out.l = ssv.lengths;
+    out.r = ssv.radius;
+    out.To = obb.center.into();
+    out.d = obb.half.into();
+    Ok(())
+}
+
+/// PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
+/// first's frame by (R, T).
+///
+/// Each box is taken in its volume's own frame, about that frame's origin: box 1 is
+/// { x : |x_i| <= b1->d[i] }, box 2 is { y : |y_i| <= b2->d[i] }, and a point y of box 2's frame
+/// is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold the
+/// volumes' frames and centres into R and T). The test is conservative: it never answers 0 for
+/// boxes that share a point (touching counts as overlapping); for boxes apart by less than a
+/// rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
+///
+/// @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
+/// @param R        the rotation of box 2's frame in box 1's, 9 doubles row by row (a rotation; not
+///                 checked).
+/// @param T        the translation, 3 doubles.
+/// @param b1, b2   the volumes (only d is read).
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+///         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+///         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
+///         negative; PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_bv_overlap(
+    overlap: *mut c_int,
+    R: *const f64,
+    T: *const f64,
+    b1: *const pqp_bv,
+    b2: *const pqp_bv,
+) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || {},
+        || code(boxes_overlap(overlap, R, T, b1, b2)),
+    )
+}
+
+/// The body of pqp_bv_overlap.
+///
+/// # Safety
+/// As pqp_bv_overlap's pointers.
+unsafe fn boxes_overlap(
+    overlap: *mut c_int,
+    R: *const f64,
+    T: *const f64,
+    b1: *const pqp_bv,
+    b2: *const pqp_bv,
+) -> Result<(), Error> {
+    if overlap.is_null() {
+        return Err(Error::NullPointer);
+    }
+    let rel = read_placement(R, T)?;
+    let (b1, b2) = (deref(b1)?, deref(b2)?);
+    let about_origin = |d: &[f64; 3]| -> Result<Obb, Error> {
+        Ok(Obb {
+            axes: Mat3::identity(),
+            center: Vec3::zeros(),
+            half: Vec3::new(size(d[0])?, size(d[1])?, size(d[2])?),
+        })
+    };
+    let (a, b) = (about_origin(&b1.d)?, about_origin(&b2.d)?);
+    overlap.write(c_int::from(Obb::overlap(&a, &b, &rel)));
+    Ok(())
+}
+
+/// PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
+/// second placed in the first's frame by (R, T).
+///
+/// Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
+/// rectangle 1 is [0, b1->l[0]] x [0, b1->l[1]] in the xy-plane of frame 1, rectangle 2 likewise
+/// in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
+/// the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
+/// the distance between the swept sphere volumes when they are apart, negative when they overlap
+/// deeper than touching (as PQP's). The volumes' R, Tr, To and d are not read (PQP's callers fold
+/// the volumes' frames and corners into R and T).
+///
+/// @param distance  receives the distance (unchanged on any error).
+/// @param R         the rotation of frame 2 in frame 1, 9 doubles row by row (a rotation; not
+///                  checked).
+/// @param T         the translation, 3 doubles.
+/// @param b1, b2    the volumes (only l and r are read).
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+///         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+///         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
+///         negative; PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: may be called from any thread at any time.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_bv_distance(
+    distance: *mut f64,
+    R: *const f64,
+    T: *const f64,
+    b1: *const pqp_bv,
+    b2: *const pqp_bv,
+) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || {},
+        || code(volumes_distance(distance, R, T, b1, b2)),
+    )
+}
+
+/// The body of pqp_bv_distance.
+///
+/// # Safety
+/// As pqp_bv_distance's pointers.
+unsafe fn volumes_distance(
+    distance: *mut f64,
+    R: *const f64,
+    T: *const f64,
+    b1: *const pqp_bv,
+    b2: *const pqp_bv,
+) -> Result<(), Error> {
+    if distance.is_null() {
+        return Err(Error::NullPointer);
+    }
+    let rel = read_placement(R, T)?;
+    let (b1, b2) = (deref(b1)?, deref(b2)?);
+    let l1 = [size(b1.l[0])?, size(b1.l[1])?];
+    let l2 = [size(b2.l[0])?, size(b2.l[1])?];
+    let radii = size(b1.r)? + size(b2.r)?;
+    // Exact: no early stop (enough 0), no cutoff.
+    let (d, _) = rect_distance(&rel.rot, &rel.trans, l1, l2, 0.0, f64::INFINITY, true);
+    distance.write(d - radii);
+    Ok(())
 }
