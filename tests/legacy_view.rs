@@ -778,3 +778,95 @@ fn memory_usage_counts_the_view_once_made() {
         pqp_model_destroy(copy);
     }
 }
+
+/// The triangles a distance or tolerance result names are the closest (or a close enough) pair,
+/// by their positions in the order added, whatever the ids (here repeated, so that only the
+/// positions tell triangles apart).
+#[test]
+fn results_name_their_triangles_in_the_order_added() {
+    use common::{apply_tri, point_tri, tri_tri};
+    let mut rng = Rng::new(31);
+    let a = Mesh::soup(&mut rng, 200, 1.0, 0.3);
+    let b = Mesh::torus(0.7, 0.2, 16, 8);
+    unsafe {
+        let build = |mesh: &Mesh| {
+            let m = pqp_model_create();
+            for (i, t) in mesh.tris.iter().enumerate() {
+                let id = (i % 7) as i32;
+                assert_eq!(
+                    pqp_model_add_tri(m, t[0].as_ptr(), t[1].as_ptr(), t[2].as_ptr(), id),
+                    PQP_OK
+                );
+            }
+            assert_eq!(pqp_model_end(m), PQP_OK);
+            m
+        };
+        let (ma, mb) = (build(&a), build(&b));
+        let (dr, tr) = (pqp_distance_result_create(), pqp_tolerance_result_create());
+        let (mut t1, mut t2) = (5, 5);
+        assert_eq!(pqp_distance_result_triangles(dr, &mut t1, &mut t2), PQP_OK);
+        assert_eq!((t1, t2), (-1, -1));
+        (t1, t2) = (5, 5);
+        assert_eq!(pqp_tolerance_result_triangles(tr, &mut t1, &mut t2), PQP_OK);
+        assert_eq!((t1, t2), (-1, -1));
+        let (mut overlapping, mut apart, mut closer, mut farther) = (0, 0, 0, 0);
+        for k in 0..200 {
+            let pose = rng.pose(if k % 2 == 0 { 1.0 } else { 2.5 });
+            let (r, t) = c_pose(&pose);
+            let (rp, tp) = (r.as_ptr(), t.as_ptr());
+            let (ip, zp) = (I3.as_ptr(), [0.0; 3].as_ptr());
+            assert_eq!(
+                pqp_distance(dr, ip, zp, ma, rp, tp, mb, 0.0, 0.0, 2),
+                PQP_OK
+            );
+            assert_eq!(pqp_distance_result_triangles(dr, &mut t1, &mut t2), PQP_OK);
+            let (ta, tb) = (a.tris[t1 as usize], apply_tri(&pose, &b.tris[t2 as usize]));
+            let d = pqp_distance_result_distance(dr);
+            assert!((tri_tri(&ta, &tb) - d).abs() <= 1e-9, "pose {k}");
+            let p1 = *(pqp_distance_result_p1(dr) as *const [f64; 3]);
+            assert!(point_tri(p1, &ta) <= 1e-9, "pose {k}");
+            assert_eq!(pqp_distance_result_id1(dr), t1 % 7);
+            assert_eq!(pqp_distance_result_id2(dr), t2 % 7);
+            if pqp_distance_result_overlap(dr) == 1 {
+                overlapping += 1;
+            } else {
+                apart += 1;
+            }
+            let tol = 0.1;
+            assert_eq!(pqp_tolerance(tr, ip, zp, ma, rp, tp, mb, tol, 2), PQP_OK);
+            assert_eq!(pqp_tolerance_result_triangles(tr, &mut t1, &mut t2), PQP_OK);
+            if pqp_tolerance_result_closer_than_tolerance(tr) == 1 {
+                let (ta, tb) = (a.tris[t1 as usize], apply_tri(&pose, &b.tris[t2 as usize]));
+                assert!(tri_tri(&ta, &tb) <= tol + 1e-9, "pose {k}");
+                closer += 1;
+            } else {
+                assert_eq!((t1, t2), (-1, -1));
+                farther += 1;
+            }
+        }
+        assert!(overlapping > 10 && apart > 10 && closer > 10 && farther > 10);
+        // NULL: nothing written.
+        (t1, t2) = (5, 5);
+        assert_eq!(
+            pqp_distance_result_triangles(ptr::null(), &mut t1, &mut t2),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            pqp_distance_result_triangles(dr, ptr::null_mut(), &mut t2),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            pqp_tolerance_result_triangles(tr, &mut t1, ptr::null_mut()),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            pqp_tolerance_result_triangles(ptr::null(), &mut t1, &mut t2),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!((t1, t2), (5, 5));
+        pqp_distance_result_destroy(dr);
+        pqp_tolerance_result_destroy(tr);
+        pqp_model_destroy(ma);
+        pqp_model_destroy(mb);
+    }
+}

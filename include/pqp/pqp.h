@@ -1044,6 +1044,22 @@ int pqp_distance_result_id1(const struct pqp_distance_result *r);
 int pqp_distance_result_id2(const struct pqp_distance_result *r);
 
 /**
+ * The triangles of the closest (or, when overlapping, an intersecting) triangle pair found by the
+ * last pqp_distance on r, by their positions in the order added: indices into pqp_model_tris of
+ * each model (what PQP 1.3's last_tri pointed at). They name the same triangles as
+ * pqp_distance_result_id1 and pqp_distance_result_id2.
+ *
+ * @param r   the result.
+ * @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+ *            before any query (r holds no pair then).
+ * @param t2  receives model 2's triangle, likewise.
+ * @return PQP_OK (also before any query, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or t2 is
+ *         NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_distance_result_triangles(const struct pqp_distance_result *r, int *t1, int *t2);
+
+/**
  * The number of bounding-volume distance tests the last pqp_distance on r performed.
  *
  * @param r  the result, or NULL.
@@ -1200,6 +1216,21 @@ const double *pqp_tolerance_result_p1(const struct pqp_tolerance_result *r);
  * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
  */
 const double *pqp_tolerance_result_p2(const struct pqp_tolerance_result *r);
+
+/**
+ * When the last pqp_tolerance on r found the models closer than the tolerance: the triangles of
+ * the pair within the tolerance, by their positions in the order added (indices into
+ * pqp_model_tris of each model, what PQP 1.3's last_tri pointed at). Otherwise -1 and -1.
+ *
+ * @param r   the result.
+ * @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+ *            before any query, or when the models were not within the tolerance (no pair then).
+ * @param t2  receives model 2's triangle, likewise.
+ * @return PQP_OK (also when there is no pair, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or
+ *         t2 is NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_tolerance_result_triangles(const struct pqp_tolerance_result *r, int *t1, int *t2);
 
 /**
  * The number of bounding-volume distance tests the last pqp_tolerance on r performed.

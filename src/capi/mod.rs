@@ -325,6 +325,24 @@ pub(crate) unsafe fn stat<T>(r: *const T, get: impl FnOnce(&T) -> Stats) -> Opti
     deref(r).ok().map(get)
 }
 
+/// Writes a triangle pair to C, or `Err(NullPointer)` (writing nothing) if a pointer is NULL.
+///
+/// # Safety
+/// Each pointer is NULL or writable.
+pub(crate) unsafe fn write_pair(
+    t1: *mut c_int,
+    t2: *mut c_int,
+    a: i32,
+    b: i32,
+) -> Result<(), Error> {
+    if t1.is_null() || t2.is_null() {
+        return Err(Error::NullPointer);
+    }
+    t1.write(a);
+    t2.write(b);
+    Ok(())
+}
+
 /// A counter for C's `int64_t` (saturating; no query performs 2^63 tests).
 pub(crate) fn count(n: u64) -> i64 {
     i64::try_from(n).unwrap_or(i64::MAX)
