@@ -234,7 +234,8 @@ impl Model {
     ///
     /// ```
     /// use pqp::Model;
-    /// let a = Model::from_triangles([([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 4)]).unwrap();
+    /// let tri = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 4);
+    /// let a = Model::from_triangles([tri]).unwrap();
     /// let b = a.try_clone().unwrap();
     /// drop(a);
     /// assert!(b.is_built());

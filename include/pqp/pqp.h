@@ -282,8 +282,8 @@ typedef struct pqp_tri {
  * sphere and an oriented box on it, and where its children are.
  *
  * With R, Tr and To in model coordinates, the rectangle swept sphere is the set of points within
- * r of { Tr + x * axis0 + y * axis1 : 0 <= x <= l[0], 0 <= y <= l[1] } and the box is
- * { To + c0 * axis0 + c1 * axis1 + c2 * axis2 : |ci| <= d[i] }, axis i being column i of R. In
+ * r of `{ Tr + x * axis0 + y * axis1 : 0 <= x <= l[0], 0 <= y <= l[1] }` and the box is
+ * `{ To + c0 * axis0 + c1 * axis1 + c2 * axis2 : |ci| <= d[i] }`, axis i being column i of R. In
  * pqp_model_bvs's array (as in PQP's) only the root's R, Tr and To are in model coordinates;
  * every other volume's are relative to its parent's: with Ra, Tra, Toa a volume's values in
  * model coordinates and Rp, Trp, Top its parent's, the array holds R = Rp^T Ra,
@@ -293,7 +293,7 @@ typedef struct pqp_tri {
  */
 typedef struct pqp_bv {
     /**
-     * Orientation, row by row (R[row][col]): its columns are the volume's axes.
+     * Orientation, row by row (`R[row][col]`): its columns are the volume's axes.
      */
     double R[3][3];
     /**
@@ -353,7 +353,7 @@ typedef struct pqp_tri_float {
  */
 typedef struct pqp_bv_float {
     /**
-     * Orientation, row by row (R[row][col]): its columns are the volume's axes.
+     * Orientation, row by row (`R[row][col]`): its columns are the volume's axes.
      */
     float R[3][3];
     /**
@@ -612,7 +612,7 @@ int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *
  * PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
  * layout and frames (see pqp_bv).
  *
- * There are exactly 2 n - 1 volumes for n triangles. b[0] is the root. The children of a volume
+ * There are exactly 2 n - 1 volumes for n triangles. `b[0]` is the root. The children of a volume
  * are at first_child and first_child + 1, both after it; they were given out depth first, as PQP
  * did (when a volume is expanded its two children take the next two free slots, then the first
  * child's subtree is laid out before the second's). A leaf's first_child is -(t + 1), t being its
@@ -696,10 +696,10 @@ int pqp_bv_fit(struct pqp_bv *bv, const double *O, const struct pqp_tri *tris, i
  * first's frame by (R, T).
  *
  * Each box is taken in its volume's own frame, about that frame's origin: box 1 is
- * { x : |x_i| <= b1->d[i] }, box 2 is { y : |y_i| <= b2->d[i] }, and a point y of box 2's frame
- * is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold the
- * volumes' frames and centres into R and T). The test is conservative: it never answers 0 for
- * boxes that share a point (touching counts as overlapping); for boxes apart by less than a
+ * `{ x : |x_i| <= b1->d[i] }`, box 2 is `{ y : |y_i| <= b2->d[i] }`, and a point y of box 2's
+ * frame is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold
+ * the volumes' frames and centres into R and T). The test is conservative: it never answers 0
+ * for boxes that share a point (touching counts as overlapping); for boxes apart by less than a
  * rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
  *
  * @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
@@ -724,7 +724,7 @@ int pqp_bv_overlap(int *overlap,
  * second placed in the first's frame by (R, T).
  *
  * Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
- * rectangle 1 is [0, b1->l[0]] x [0, b1->l[1]] in the xy-plane of frame 1, rectangle 2 likewise
+ * rectangle 1 is `[0, b1->l[0]] x [0, b1->l[1]]` in the xy-plane of frame 1, rectangle 2 likewise
  * in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
  * the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
  * the distance between the swept sphere volumes when they are apart, negative when they overlap
