@@ -118,8 +118,8 @@ static void build_protocol(void)
     pqp_model *m = pqp_model_create();
     CHECK(m != NULL);
 
-    /* End on a fresh model: out of sequence; nothing built. */
-    CHECK_EQ(pqp_model_end(m), PQP_ERR_BUILD_OUT_OF_SEQUENCE);
+    /* End on a fresh model: an empty model (PQP 1.3's EndModel); nothing built. */
+    CHECK_EQ(pqp_model_end(m), PQP_ERR_BUILD_EMPTY_MODEL);
     CHECK_EQ(pqp_model_is_built(m), 0);
     CHECK_EQ(pqp_model_num_tris(m), 0);
 

@@ -151,8 +151,8 @@ static void test_build_protocol(void) {
     pqp_collide_result *cr = pqp_collide_result_create();
     CHECK(m != NULL && pqp_model_is_built(m) == 0 && pqp_model_num_tris(m) == 0);
 
-    /* end before begin/add */
-    CHECK_RC(pqp_model_end(m), PQP_ERR_BUILD_OUT_OF_SEQUENCE);
+    /* end before begin/add: an empty model, as PQP 1.3 says */
+    CHECK_RC(pqp_model_end(m), PQP_ERR_BUILD_EMPTY_MODEL);
     /* add before begin begins implicitly */
     CHECK_RC(add_unit_tri(m, 0, 0, 7), PQP_OK);
     CHECK(pqp_model_num_tris(m) == 1 && pqp_model_is_built(m) == 0);

@@ -37,14 +37,17 @@ pub enum CollisionVolume {
     Ssv,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum State {
-    /// Fresh or cleared: `begin` expected (an `add` begins implicitly, as PQP does).
-    Empty,
-    /// Between `begin` and `end`.
-    Building,
+/// Where a model is in PQP's build protocol ([`Model::build_state`]); PQP 1.3's `build_state`,
+/// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BuildState {
+    /// Fresh: `begin` expected (an `add` begins implicitly, as PQP does). `begin` clears a model
+    /// and begins it, so only a fresh model is empty.
+    Empty = 0,
+    /// Begun (by `begin`, or by an `add` on an empty model), and no successful `end` since.
+    Begun = 1,
     /// `end` succeeded: the hierarchy is built and the model is immutable.
-    Built,
+    Built = 2,
 }
 
 /// A triangle model, built by [`begin`](Model::begin), [`add_triangle`](Model::add_triangle) and
@@ -61,13 +64,18 @@ enum State {
 /// assert_eq!(m.num_triangles(), 1);
 /// assert!(m.is_built());
 /// ```
-#[derive(Debug)]
+///
+/// `clone` (or [`try_clone`](Model::try_clone), which reports a failed allocation instead of
+/// aborting) gives a deep, independent copy in the same state.
+#[derive(Clone, Debug)]
 pub struct Model {
-    state: State,
+    state: BuildState,
     /// Triangles in the order added, until `end` hands them to the hierarchy.
     pending: Vec<(Tri, i32)>,
     bvh: Option<Bvh>,
-    /// Identifies this build of this model, for the triangle cache kept in distance results.
+    /// Identifies this build of this model, for the triangle cache kept in distance results. A
+    /// clone keeps it: its hierarchy is the same, bit for bit, so what a result cached for one
+    /// (triangle slots, node pairs) holds for the other.
     uid: u64,
     /// The hierarchy's volumes, chosen before `end`.
     volume: VolumeKind,
@@ -86,7 +94,7 @@ impl Model {
     /// An empty model.
     pub fn new() -> Model {
         Model {
-            state: State::Empty,
+            state: BuildState::Empty,
             pending: Vec::new(),
             bvh: None,
             uid: 0,
@@ -112,7 +120,7 @@ impl Model {
     /// assert!(m.set_volume(VolumeKind::Rss).is_err());
     /// ```
     pub fn set_volume(&mut self, volume: VolumeKind) -> Result<(), Error> {
-        if self.state == State::Built {
+        if self.state == BuildState::Built {
             return Err(Error::BuildOutOfSequence);
         }
         self.volume = volume;
@@ -123,7 +131,7 @@ impl Model {
     /// [`CollisionVolume::Obb`]). As [`set_volume`](Model::set_volume): before `end`, kept across
     /// builds, `Err(BuildOutOfSequence)` on a built model.
     pub fn set_collision_volume(&mut self, collision: CollisionVolume) -> Result<(), Error> {
-        if self.state == State::Built {
+        if self.state == BuildState::Built {
             return Err(Error::BuildOutOfSequence);
         }
         self.collision = collision;
@@ -145,13 +153,13 @@ impl Model {
     /// On a model that is not fresh (begun, or built) the model is cleared and
     /// `Err(BuildOutOfSequence)` is returned, as PQP does; the model is then ready for `add_triangle`.
     pub fn begin(&mut self, capacity_hint: usize) -> Result<(), Error> {
-        let was_empty = self.state == State::Empty;
+        let was_empty = self.state == BuildState::Empty;
         self.pending = Vec::new();
         self.bvh = None;
         self.uid = 0;
         // A hint is only a hint: a huge one must not abort the process.
         let _ = self.pending.try_reserve(capacity_hint.min(1 << 24));
-        self.state = State::Building;
+        self.state = BuildState::Begun;
         if was_empty {
             Ok(())
         } else {
@@ -163,8 +171,10 @@ impl Model {
     ///
     /// Before `begin` it begins implicitly (PQP's behaviour). After `end` it is ignored and returns
     /// `Err(BuildOutOfSequence)`. A vertex with a NaN, infinite, or huge (> [`MAX_COORDINATE`])
-    /// coordinate is refused with `Err(NonFiniteCoordinate)`: the triangle is not stored and the model
-    /// stays usable. Degenerate triangles (segments, points) are accepted.
+    /// coordinate is refused with `Err(NonFiniteCoordinate)`: the triangle is not stored and the
+    /// model stays usable, with the triangles it had; an empty model is begun all the same (the
+    /// implicit begin comes first), so [`build_state`](Model::build_state) is then
+    /// [`BuildState::Begun`]. Degenerate triangles (segments, points) are accepted.
     pub fn add_triangle(
         &mut self,
         p1: [f64; 3],
@@ -173,9 +183,9 @@ impl Model {
         id: i32,
     ) -> Result<(), Error> {
         match self.state {
-            State::Built => return Err(Error::BuildOutOfSequence),
-            State::Empty => self.state = State::Building,
-            State::Building => {}
+            BuildState::Built => return Err(Error::BuildOutOfSequence),
+            BuildState::Empty => self.state = BuildState::Begun,
+            BuildState::Begun => {}
         }
         let ok = p1
             .iter()
@@ -198,22 +208,50 @@ impl Model {
 
     /// Builds the bounding-volume hierarchy. After it the model is immutable and can be queried.
     ///
-    /// `Err(BuildOutOfSequence)` if already built or never begun; `Err(BuildEmptyModel)` if begun
-    /// but no triangle was added (the model stays unusable until triangles are added and `end`
-    /// succeeds); `Err(ModelOutOfMemory)` if the hierarchy could not
-    /// be allocated.
+    /// As PQP 1.3's `EndModel`: `Err(BuildOutOfSequence)` only if already built (the model stays
+    /// built); `Err(BuildEmptyModel)` if the model holds no triangle, begun or not (a fresh model
+    /// included): it stays unbuilt, in the state it was in, until triangles are added and `end`
+    /// succeeds; `Err(ModelOutOfMemory)` if the hierarchy could not be allocated.
     pub fn end(&mut self) -> Result<(), Error> {
         match self.state {
-            State::Built | State::Empty => return Err(Error::BuildOutOfSequence),
-            State::Building if self.pending.is_empty() => return Err(Error::BuildEmptyModel),
-            State::Building => {}
+            BuildState::Built => return Err(Error::BuildOutOfSequence),
+            BuildState::Empty => return Err(Error::BuildEmptyModel),
+            BuildState::Begun if self.pending.is_empty() => return Err(Error::BuildEmptyModel),
+            BuildState::Begun => {}
         }
         let tris = std::mem::take(&mut self.pending);
         let bvh = Bvh::build(tris, self.volume, self.collision)?;
         self.bvh = Some(bvh);
-        self.state = State::Built;
+        self.state = BuildState::Built;
         self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);
         Ok(())
+    }
+
+    /// A deep copy of the model in its state (empty, being built, or built; the volume choices
+    /// too), as `clone` makes it, but `Err(ModelOutOfMemory)` when its storage cannot be allocated
+    /// (`clone` aborts the process then). The copy answers every query exactly as the original;
+    /// building or dropping either never affects the other.
+    ///
+    /// ```
+    /// use pqp::Model;
+    /// let tri = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 4);
+    /// let a = Model::from_triangles([tri]).unwrap();
+    /// let b = a.try_clone().unwrap();
+    /// drop(a);
+    /// assert!(b.is_built());
+    /// ```
+    pub fn try_clone(&self) -> Result<Model, Error> {
+        Ok(Model {
+            state: self.state,
+            pending: try_copy(&self.pending)?,
+            bvh: match &self.bvh {
+                Some(b) => Some(b.try_clone()?),
+                None => None,
+            },
+            uid: self.uid,
+            volume: self.volume,
+            collision: self.collision,
+        })
     }
 
     /// Builds a model from `(p1, p2, p3, id)` triangles in one call.
@@ -237,7 +275,22 @@ impl Model {
 
     /// Whether `end` has succeeded.
     pub fn is_built(&self) -> bool {
-        self.state == State::Built
+        self.state == BuildState::Built
+    }
+
+    /// Where the model is in the build protocol.
+    ///
+    /// ```
+    /// use pqp::{BuildState, Model};
+    /// let mut m = Model::new();
+    /// assert_eq!(m.build_state(), BuildState::Empty);
+    /// m.add_triangle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 0).unwrap();
+    /// assert_eq!(m.build_state(), BuildState::Begun);
+    /// m.end().unwrap();
+    /// assert_eq!(m.build_state(), BuildState::Built);
+    /// ```
+    pub fn build_state(&self) -> BuildState {
+        self.state
     }
 
     /// Number of triangles stored (added so far, or in the built model).
@@ -258,8 +311,22 @@ impl Model {
     /// The hierarchy of a built model.
     pub(crate) fn bvh(&self) -> Result<&Bvh, Error> {
         match (&self.state, &self.bvh) {
-            (State::Built, Some(b)) => Ok(b),
+            (BuildState::Built, Some(b)) => Ok(b),
             _ => Err(Error::UnprocessedModel),
+        }
+    }
+
+    /// Calls `put(k, triangle, id)` for every triangle the model holds (added so far, or built),
+    /// `k` being its position in the order added: each of `0..num_triangles()` once, in no
+    /// particular order.
+    pub(crate) fn for_each_added(&self, mut put: impl FnMut(usize, Tri, i32)) {
+        match &self.bvh {
+            Some(b) => b.for_each_added(put),
+            None => {
+                for (k, &(t, id)) in self.pending.iter().enumerate() {
+                    put(k, t, id);
+                }
+            }
         }
     }
 
@@ -267,4 +334,13 @@ impl Model {
     pub(crate) fn uid(&self) -> u64 {
         self.uid
     }
+}
+
+/// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
+pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(v.len())
+        .map_err(|_| Error::ModelOutOfMemory)?;
+    out.extend_from_slice(v);
+    Ok(out)
 }

@@ -38,6 +38,11 @@ fn threads_share_models() {
     c_program("threads");
 }
 
+#[test]
+fn pqp_view_of_a_model_from_c() {
+    c_program("legacy_view");
+}
+
 /// PQP 1.3 code through PQP.h compiles warning-free and answers correctly in every C++ standard.
 #[test]
 fn legacy_cxx_program_in_every_standard() {

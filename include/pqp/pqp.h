@@ -180,6 +180,24 @@
 #define PQP_COLLIDE_SSV 1
 
 /**
+ * Build state (pqp_model_build_state): fresh or cleared, no build begun (PQP 1.3's name and
+ * value).
+ */
+#define PQP_BUILD_STATE_EMPTY 0
+
+/**
+ * Build state (pqp_model_build_state): begun (by pqp_model_begin, or by pqp_model_add_tri on an
+ * empty model) and not built since (PQP 1.3's name and value).
+ */
+#define PQP_BUILD_STATE_BEGUN 1
+
+/**
+ * Build state (pqp_model_build_state): built by a successful pqp_model_end (PQP 1.3's name and
+ * value).
+ */
+#define PQP_BUILD_STATE_PROCESSED 2
+
+/**
  * Feature kind: a vertex (see pqp_convex_result_feature1_kind).
  */
 #define PQP_CONVEX_VERTEX 0
@@ -235,6 +253,134 @@ typedef struct pqp_model pqp_model;
  * from the triangle pair that decided the last answer.
  */
 typedef struct pqp_tolerance_result pqp_tolerance_result;
+
+/**
+ * A triangle as PQP 1.3's `Tri` holds it (pqp_model_tris): its vertices and the id given to
+ * pqp_model_add_tri.
+ */
+typedef struct pqp_tri {
+    /**
+     * First vertex (x, y, z in the model's frame).
+     */
+    double p1[3];
+    /**
+     * Second vertex.
+     */
+    double p2[3];
+    /**
+     * Third vertex.
+     */
+    double p3[3];
+    /**
+     * The caller's id.
+     */
+    int id;
+} pqp_tri;
+
+/**
+ * A bounding volume as PQP 1.3's `BV` holds it (pqp_model_bvs): a frame, a rectangle swept
+ * sphere and an oriented box on it, and where its children are.
+ *
+ * With R, Tr and To in model coordinates, the rectangle swept sphere is the set of points within
+ * r of `{ Tr + x * axis0 + y * axis1 : 0 <= x <= l[0], 0 <= y <= l[1] }` and the box is
+ * `{ To + c0 * axis0 + c1 * axis1 + c2 * axis2 : |ci| <= d[i] }`, axis i being column i of R. In
+ * pqp_model_bvs's array (as in PQP's) only the root's R, Tr and To are in model coordinates;
+ * every other volume's are relative to its parent's: with Ra, Tra, Toa a volume's values in
+ * model coordinates and Rp, Trp, Top its parent's, the array holds R = Rp^T Ra,
+ * Tr = Rp^T (Tra - Trp) and To = Rp^T (Toa - Top) (so Ra = Rp R, Tra = Rp Tr + Trp,
+ * Toa = Rp To + Top, composed from the root down). A model built with PQP_BV_PSS, PQP_BV_LSS or
+ * PQP_BV_HYBRID has point or segment cores in some volumes: rectangles with zero sides.
+ */
+typedef struct pqp_bv {
+    /**
+     * Orientation, row by row (`R[row][col]`): its columns are the volume's axes.
+     */
+    double R[3][3];
+    /**
+     * Rectangle swept sphere: the rectangle's corner.
+     */
+    double Tr[3];
+    /**
+     * Rectangle swept sphere: the rectangle's sides along the first two axes (>= 0).
+     */
+    double l[2];
+    /**
+     * Rectangle swept sphere: the radius (>= 0).
+     */
+    double r;
+    /**
+     * Oriented box: its centre.
+     */
+    double To[3];
+    /**
+     * Oriented box: its half extents along the axes (>= 0).
+     */
+    double d[3];
+    /**
+     * Where the children are: when first_child >= 0 they are at first_child and first_child + 1
+     * (both after this volume in the array); when first_child < 0 this is a leaf, holding
+     * triangle -first_child - 1 of pqp_model_tris (PQP's encoding).
+     */
+    int first_child;
+} pqp_bv;
+
+/**
+ * pqp_tri with float coordinates (pqp_model_tris_float), for code compiled with PQP_REAL float:
+ * the same values rounded to float (beyond float's range: +-infinity).
+ */
+typedef struct pqp_tri_float {
+    /**
+     * First vertex.
+     */
+    float p1[3];
+    /**
+     * Second vertex.
+     */
+    float p2[3];
+    /**
+     * Third vertex.
+     */
+    float p3[3];
+    /**
+     * The caller's id.
+     */
+    int id;
+} pqp_tri_float;
+
+/**
+ * pqp_bv with float values (pqp_model_bvs_float), for code compiled with PQP_REAL float: the
+ * same values rounded to float (beyond float's range: +-infinity).
+ */
+typedef struct pqp_bv_float {
+    /**
+     * Orientation, row by row (`R[row][col]`): its columns are the volume's axes.
+     */
+    float R[3][3];
+    /**
+     * Rectangle swept sphere: the rectangle's corner.
+     */
+    float Tr[3];
+    /**
+     * Rectangle swept sphere: the rectangle's sides.
+     */
+    float l[2];
+    /**
+     * Rectangle swept sphere: the radius.
+     */
+    float r;
+    /**
+     * Oriented box: its centre.
+     */
+    float To[3];
+    /**
+     * Oriented box: its half extents.
+     */
+    float d[3];
+    /**
+     * As in pqp_bv.
+     */
+    int first_child;
+} pqp_bv_float;
 
 /**
  * A colliding triangle pair: the id of the triangle of model 1 and of model 2, as given to
@@ -298,6 +444,34 @@ struct pqp_model *pqp_model_create(void);
 void pqp_model_destroy(struct pqp_model *m);
 
 /**
+ * Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the
+ * triangles added so far; the copy can go on being built), or built (the copy is built, with the
+ * same hierarchy bit for bit, and answers every query exactly as m does). The volume choices are
+ * copied too. Building, rebuilding or destroying either model never affects the other.
+ *
+ * @param out  receives the copy (free it with pqp_model_destroy), or NULL on any error.
+ * @param m    the model to copy.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if out or m is NULL; PQP_ERR_MODEL_OUT_OF_MEMORY if the
+ *         copy could not be allocated; PQP_ERR_INTERNAL on an internal fault (*out is then NULL).
+ * Thread safety: may run concurrently with queries and getters on m (a built model may be copied
+ *                while other threads query it), not with build calls on m.
+ */
+int pqp_model_clone(struct pqp_model **out, const struct pqp_model *m);
+
+/**
+ * Where a model is in PQP's build protocol (PQP 1.3's build_state).
+ *
+ * @param m  the model, or NULL.
+ * @return PQP_BUILD_STATE_EMPTY (0) for a fresh model (pqp_model_end leaves it so; as
+ *         pqp_model_begin clears a model and begins it, no other model is empty);
+ *         PQP_BUILD_STATE_BEGUN (1) after pqp_model_begin or pqp_model_add_tri (even one that
+ *         refused its triangle) until a successful pqp_model_end; PQP_BUILD_STATE_PROCESSED (2)
+ *         once built; 0 if m is NULL.
+ * Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+ */
+int pqp_model_build_state(const struct pqp_model *m);
+
+/**
  * Starts building a model (PQP's BeginModel).
  *
  * On a model that is not fresh (already begun, or built) the model is cleared, the call returns
@@ -325,7 +499,9 @@ int pqp_model_begin(struct pqp_model *m, int num_tris_hint);
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m, p1, p2 or p3 is NULL;
  *         PQP_ERR_BUILD_OUT_OF_SEQUENCE after a successful pqp_model_end (the triangle is ignored);
  *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
- *         magnitude (the triangle is refused; the model stays usable);
+ *         magnitude (the triangle is not stored; the model keeps the triangles it had and stays
+ *         usable; an empty model is begun all the same, as the implicit begin comes first:
+ *         pqp_model_build_state then gives PQP_BUILD_STATE_BEGUN);
  *         PQP_ERR_MODEL_OUT_OF_MEMORY if the triangle could not be stored;
  *         PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: must not run concurrently with any other call using m.
@@ -342,10 +518,11 @@ int pqp_model_add_tri(struct pqp_model *m,
  *
  * @param m  the model.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model
- *         is already built or was never begun (no pqp_model_begin or pqp_model_add_tri);
- *         PQP_ERR_BUILD_EMPTY_MODEL if no triangle was added (the model stays unbuilt: queries
- *         return PQP_ERR_UNPROCESSED_MODEL); PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could
- *         not be allocated; PQP_ERR_INTERNAL on an internal fault.
+ *         is already built (it stays built); PQP_ERR_BUILD_EMPTY_MODEL if the model holds no
+ *         triangle, whether begun or not (a fresh model included; as PQP 1.3): the model stays
+ *         unbuilt, in its state (queries return PQP_ERR_UNPROCESSED_MODEL);
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could not be allocated; PQP_ERR_INTERNAL
+ *         on an internal fault.
  * Thread safety: must not run concurrently with any other call using m.
  */
 int pqp_model_end(struct pqp_model *m);
@@ -390,7 +567,9 @@ int pqp_model_set_collision_volume(struct pqp_model *m, int volume);
 int pqp_model_num_tris(const struct pqp_model *m);
 
 /**
- * The memory a model holds, in bytes (triangles, hierarchy and bookkeeping).
+ * The memory a model holds, in bytes (triangles, hierarchy and bookkeeping), including PQP
+ * 1.3's view of it once asked for (pqp_model_tris, pqp_model_bvs and their float forms make it on
+ * their first call and keep it; a model never asked costs nothing for it).
  *
  * @param m  the model, or NULL.
  * @return the byte count; 0 if m is NULL.
@@ -406,6 +585,168 @@ uint64_t pqp_model_memory_usage(const struct pqp_model *m);
  * Thread safety: may run concurrently with queries and other getters on m, not with build calls.
  */
 int pqp_model_is_built(const struct pqp_model *m);
+
+/**
+ * PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
+ * id, as double.
+ *
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array. While a model is being built it holds the triangles added so
+ * far; a triangle refused by pqp_model_add_tri is not in it.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error). It stays valid, and its contents unchanged, until the next
+ *                  pqp_model_begin, pqp_model_add_tri or pqp_model_end on m, or
+ *                  pqp_model_destroy(m).
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, tris or num_tris is NULL;
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
+ */
+int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *num_tris);
+
+/**
+ * PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
+ * layout and frames (see pqp_bv).
+ *
+ * There are exactly 2 n - 1 volumes for n triangles. `b[0]` is the root. The children of a volume
+ * are at first_child and first_child + 1, both after it; they were given out depth first, as PQP
+ * did (when a volume is expanded its two children take the next two free slots, then the first
+ * child's subtree is laid out before the second's). A leaf's first_child is -(t + 1), t being its
+ * triangle's index in pqp_model_tris (the order added); a one-triangle model has one volume, a
+ * leaf with first_child -1. Each volume contains its triangles. Inner volumes are those the
+ * queries use; a leaf's are the rectangle around its triangle and the box on that rectangle's
+ * axes.
+ *
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array.
+ *
+ * @param m        the model.
+ * @param bvs      receives the array (owned by m; NULL on any error). It stays valid, and its
+ *                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri or
+ *                 pqp_model_end on m, or pqp_model_destroy(m).
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
+ *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
+ */
+int pqp_model_bvs(const struct pqp_model *m, const struct pqp_bv **bvs, int *num_bvs);
+
+/**
+ * As pqp_model_tris, with float coordinates (pqp_tri_float): for code compiled with PQP_REAL
+ * float. The values are pqp_model_tris's rounded to float. Kept apart from the double array.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error), valid as pqp_model_tris's.
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK, or as pqp_model_tris (PQP_ERR_NULL_POINTER, PQP_ERR_MODEL_OUT_OF_MEMORY,
+ *         PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_tris.
+ */
+int pqp_model_tris_float(const struct pqp_model *m,
+                         const struct pqp_tri_float **tris,
+                         int *num_tris);
+
+/**
+ * As pqp_model_bvs, with float values (pqp_bv_float): for code compiled with PQP_REAL float. The
+ * values are pqp_model_bvs's rounded to float. Kept apart from the double array.
+ *
+ * @param m        the model.
+ * @param bvs      receives the array (owned by m; NULL on any error), valid as pqp_model_bvs's.
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK, or as pqp_model_bvs (PQP_ERR_NULL_POINTER, PQP_ERR_UNPROCESSED_MODEL,
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_bvs.
+ */
+int pqp_model_bvs_float(const struct pqp_model *m, const struct pqp_bv_float **bvs, int *num_bvs);
+
+/**
+ * PQP 1.3's BV::FitToTris: fits a volume's rectangle swept sphere and box, on the axes given, to
+ * every vertex of some triangles.
+ *
+ * bv->R becomes O; Tr, l and r become the smallest rectangle swept sphere the library's fit finds
+ * on those axes (the rectangle on the first two) and To, d the tightest box on them, both
+ * containing every vertex of the triangles and given in the triangles' coordinates (as PQP's:
+ * pqp_model_bvs then makes them relative to the parent). bv->first_child is left as it was.
+ *
+ * @param bv        the volume to fill.
+ * @param O         the axes, 9 doubles row by row: its columns are the axes, which must be
+ *                  orthonormal (not checked: otherwise the volumes need not contain the vertices).
+ *                  PQP used the principal axes of the vertices, the first of largest spread.
+ * @param tris      the triangles, num_tris of them (their ids are not read).
+ * @param num_tris  how many, >= 1.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if bv, O or tris is NULL; PQP_ERR_INVALID_ARGUMENT if
+ *         num_tris < 1; PQP_ERR_NONFINITE_POSE if an entry of O is NaN, infinite or larger than
+ *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a vertex coordinate is;
+ *         PQP_ERR_OUT_OF_MEMORY if working storage could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault. On any error *bv is left unchanged.
+ * Thread safety: may be called from any thread at any time; bv must not be used by another
+ *                thread during the call.
+ */
+int pqp_bv_fit(struct pqp_bv *bv, const double *O, const struct pqp_tri *tris, int num_tris);
+
+/**
+ * PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
+ * first's frame by (R, T).
+ *
+ * Each box is taken in its volume's own frame, about that frame's origin: box 1 is
+ * `{ x : |x_i| <= b1->d[i] }`, box 2 is `{ y : |y_i| <= b2->d[i] }`, and a point y of box 2's
+ * frame is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold
+ * the volumes' frames and centres into R and T). The test is conservative: it never answers 0
+ * for boxes that share a point (touching counts as overlapping); for boxes apart by less than a
+ * rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
+ *
+ * @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
+ * @param R        the rotation of box 2's frame in box 1's, 9 doubles row by row (a rotation; not
+ *                 checked).
+ * @param T        the translation, 3 doubles.
+ * @param b1, b2   the volumes (only d is read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_overlap(int *overlap,
+                   const double *R,
+                   const double *T,
+                   const struct pqp_bv *b1,
+                   const struct pqp_bv *b2);
+
+/**
+ * PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
+ * second placed in the first's frame by (R, T).
+ *
+ * Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
+ * rectangle 1 is `[0, b1->l[0]] x [0, b1->l[1]]` in the xy-plane of frame 1, rectangle 2 likewise
+ * in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
+ * the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
+ * the distance between the swept sphere volumes when they are apart, negative when they overlap
+ * deeper than touching (as PQP's). The volumes' R, Tr, To and d are not read (PQP's callers fold
+ * the volumes' frames and corners into R and T).
+ *
+ * @param distance  receives the distance (unchanged on any error).
+ * @param R         the rotation of frame 2 in frame 1, 9 doubles row by row (a rotation; not
+ *                  checked).
+ * @param T         the translation, 3 doubles.
+ * @param b1, b2    the volumes (only l and r are read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_distance(double *distance,
+                    const double *R,
+                    const double *T,
+                    const struct pqp_bv *b1,
+                    const struct pqp_bv *b2);
 
 /**
  * Creates an empty collision result.
@@ -703,6 +1044,22 @@ int pqp_distance_result_id1(const struct pqp_distance_result *r);
 int pqp_distance_result_id2(const struct pqp_distance_result *r);
 
 /**
+ * The triangles of the closest (or, when overlapping, an intersecting) triangle pair found by the
+ * last pqp_distance on r, by their positions in the order added: indices into pqp_model_tris of
+ * each model (what PQP 1.3's last_tri pointed at). They name the same triangles as
+ * pqp_distance_result_id1 and pqp_distance_result_id2.
+ *
+ * @param r   the result.
+ * @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+ *            before any query (r holds no pair then).
+ * @param t2  receives model 2's triangle, likewise.
+ * @return PQP_OK (also before any query, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or t2 is
+ *         NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_distance_result_triangles(const struct pqp_distance_result *r, int *t1, int *t2);
+
+/**
  * The number of bounding-volume distance tests the last pqp_distance on r performed.
  *
  * @param r  the result, or NULL.
@@ -859,6 +1216,21 @@ const double *pqp_tolerance_result_p1(const struct pqp_tolerance_result *r);
  * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
  */
 const double *pqp_tolerance_result_p2(const struct pqp_tolerance_result *r);
+
+/**
+ * When the last pqp_tolerance on r found the models closer than the tolerance: the triangles of
+ * the pair within the tolerance, by their positions in the order added (indices into
+ * pqp_model_tris of each model, what PQP 1.3's last_tri pointed at). Otherwise -1 and -1.
+ *
+ * @param r   the result.
+ * @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+ *            before any query, or when the models were not within the tolerance (no pair then).
+ * @param t2  receives model 2's triangle, likewise.
+ * @return PQP_OK (also when there is no pair, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or
+ *         t2 is NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+ */
+int pqp_tolerance_result_triangles(const struct pqp_tolerance_result *r, int *t1, int *t2);
 
 /**
  * The number of bounding-volume distance tests the last pqp_tolerance on r performed.

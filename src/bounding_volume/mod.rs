@@ -14,6 +14,7 @@ mod rss;
 mod ssv;
 
 pub use obb::Obb;
+pub(crate) use rect_distance::rect_distance;
 pub(crate) use ssv::CompactSsv;
 pub(crate) use ssv::Want;
 pub use ssv::{Ssv, SsvKind};

@@ -30,14 +30,19 @@ impl Bvh {
         let oom = |_| Error::ModelOutOfMemory;
         let n = tris.len();
         debug_assert!(n > 0);
-        // The triangles and their ids, permuted in place into leaf order as the nodes split them:
+        // The triangles and their insertion indices, permuted in place into leaf order as the nodes
+        // split them:
         // a node's triangles are always one contiguous run, so its vertices are one slice.
         let mut corners: Vec<Tri> = Vec::new();
         corners.try_reserve_exact(n).map_err(oom)?;
         corners.extend(tris.iter().map(|(t, _)| *t));
-        let mut ids: Vec<i32> = Vec::new();
-        ids.try_reserve_exact(n).map_err(oom)?;
-        ids.extend(tris.iter().map(|(_, id)| *id));
+        // Each triangle's position in `tris`, permuted alongside: becomes `Bvh::added`.
+        let mut added: Vec<u32> = Vec::new();
+        added.try_reserve_exact(n).map_err(oom)?;
+        added.extend(0..n as u32);
+        let mut given_ids: Vec<i32> = Vec::new();
+        given_ids.try_reserve_exact(n).map_err(oom)?;
+        given_ids.extend(tris.iter().map(|(_, id)| *id));
         drop(tris);
         // At least every vertex's `|p|_1` (twice the largest, which is rounded): for the rounding
         // allowances of `fit_volumes`.
@@ -76,7 +81,7 @@ impl Bvh {
             let mut node = Node::new(&ssv, &obb);
             let mid = split(
                 &mut corners[lo..hi],
-                &mut ids[lo..hi],
+                &mut added[lo..hi],
                 &mut keys,
                 depth >= MEAN_SPLIT_MAX_DEPTH,
             );
@@ -96,6 +101,12 @@ impl Bvh {
         drop(local);
         drop(keys);
 
+        // The ids in leaf order.
+        let mut ids: Vec<i32> = Vec::new();
+        ids.try_reserve_exact(n).map_err(oom)?;
+        ids.extend(added.iter().map(|&k| given_ids[k as usize]));
+        drop(given_ids);
+
         let (verts, faces) = share_vertices(&corners)?;
         let scale = Bvh::scale_bound(&nodes, &verts);
         let tiny = faces.iter().any(|f| {
@@ -110,6 +121,7 @@ impl Bvh {
             verts,
             faces,
             ids,
+            added,
             collision,
             scale,
             tiny,
@@ -241,11 +253,12 @@ fn split_key(t: &Tri, axis: &Vec3) -> f64 {
     ((t[0] + t[1] + t[2]) / 3.0).dot(axis)
 }
 
-/// Partitions the triangles `tris` (at least two; their `ids` and split `keys` alongside) and
+/// Partitions the triangles `tris` (at least two; their insertion indices `added` and split `keys`
+/// alongside) and
 /// returns how many go to the first child (never 0 nor all): those whose centroid projects below
 /// the mean, or the lower half by projection when the mean splits nothing off or `median` is asked
 /// for.
-fn split(tris: &mut [Tri], ids: &mut [i32], keys: &mut [f64], median: bool) -> usize {
+fn split(tris: &mut [Tri], added: &mut [u32], keys: &mut [f64], median: bool) -> usize {
     let count = tris.len();
     debug_assert_eq!(keys.len(), count);
     if !median {
@@ -255,7 +268,7 @@ fn split(tris: &mut [Tri], ids: &mut [i32], keys: &mut [f64], median: bool) -> u
             if keys[i] < mean {
                 if i != left {
                     tris.swap(i, left);
-                    ids.swap(i, left);
+                    added.swap(i, left);
                     keys.swap(i, left);
                 }
                 left += 1;
@@ -267,14 +280,14 @@ fn split(tris: &mut [Tri], ids: &mut [i32], keys: &mut [f64], median: bool) -> u
         // Nothing moved: every triangle went to the same side, each swapped with itself.
     }
     // Halves by projection. Sort keys alongside the positions so equal projections split evenly
-    // too, then move the triangles and ids to the positions' new order.
+    // too, then move the triangles and their insertion indices to the positions' new order.
     let mut pairs: Vec<(f64, u32)> = keys.iter().copied().zip(0..count as u32).collect();
     let mid = count / 2;
     pairs.select_nth_unstable_by(mid, |a, b| a.0.total_cmp(&b.0));
-    let (old_tris, old_ids) = (tris.to_vec(), ids.to_vec());
+    let (old_tris, old_added) = (tris.to_vec(), added.to_vec());
     for (k, &(_, i)) in pairs.iter().enumerate() {
         tris[k] = old_tris[i as usize];
-        ids[k] = old_ids[i as usize];
+        added[k] = old_added[i as usize];
     }
     mid
 }
@@ -483,6 +496,19 @@ mod tests {
         }
     }
 
+    /// `added` is a permutation that maps every leaf slot to the triangle given in that position,
+    /// with its id, bit for bit.
+    fn check_insertion_order(bvh: &Bvh, tris: &[(Tri, i32)]) {
+        let mut seen = vec![false; tris.len()];
+        assert_eq!(bvh.added.len(), tris.len());
+        for (t, &k) in bvh.added.iter().enumerate() {
+            let k = k as usize;
+            assert!(!std::mem::replace(&mut seen[k], true), "{k} twice");
+            assert_eq!(bvh.tri(t), tris[k].0, "slot {t}");
+            assert_eq!(bvh.ids[t], tris[k].1, "slot {t}");
+        }
+    }
+
     /// Builds with every volume kind, checks that every node's volumes contain its vertices, and
     /// returns the default build.
     fn build_checked(tris: Vec<(Tri, i32)>) -> Bvh {
@@ -524,11 +550,12 @@ mod tests {
                     ([v(), v(), v()], i)
                 })
                 .collect();
-            let bvh = build_checked(tris);
+            let bvh = build_checked(tris.clone());
             assert_eq!(bvh.nodes.len(), n as usize - 1);
             let mut ids = bvh.ids.clone();
             ids.sort();
             assert_eq!(ids, (0..n).collect::<Vec<_>>());
+            check_insertion_order(&bvh, &tris);
         }
     }
 
@@ -538,8 +565,9 @@ mod tests {
         let same: Vec<(Tri, i32)> = (0..1000)
             .map(|i| (tri([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), i))
             .collect();
-        let b = build_checked(same);
+        let b = build_checked(same.clone());
         assert!(b.depth() <= 11, "depth {}", b.depth());
+        check_insertion_order(&b, &same);
         // All points at one place.
         let points: Vec<(Tri, i32)> = (0..64)
             .map(|i| (tri([2.0; 3], [2.0; 3], [2.0; 3]), i))
@@ -569,8 +597,10 @@ mod tests {
                 (tri([x, 0.0, 0.0], [x, 1.0, 0.0], [x, 0.0, 1.0]), i)
             })
             .collect();
-        let b = build_checked(tris);
+        let b = build_checked(tris.clone());
         assert!(b.depth() <= MAX_DEPTH, "depth {}", b.depth());
+        // The median split's moves keep the mapping too.
+        check_insertion_order(&b, &tris);
     }
 
     #[test]

@@ -14,14 +14,17 @@
 //! contiguous.
 
 mod build;
+mod pqp_view;
 
 pub(crate) use build::MAX_DEPTH;
+pub(crate) use pqp_view::PqpBv;
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
+use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::RESCALE_HI;
 use crate::math::{frame_from, Mat3, RelPose, Vec3};
-use crate::model::CollisionVolume;
+use crate::model::{try_copy, CollisionVolume};
 
 /// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
 /// a leaf, holding triangle `-r - 1`.
@@ -88,14 +91,21 @@ impl Node {
 }
 
 /// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct Bvh {
     pub nodes: Vec<Node>,
     /// The distinct vertices.
     pub verts: Vec<Vec3>,
     /// Each triangle's vertices, by index into `verts`, in leaf order.
     pub faces: Vec<[u32; 3]>,
+    /// Each triangle's caller id, in leaf order.
     pub ids: Vec<i32>,
+    /// Insertion order: `added[t]` is the position among the triangles as they were added (to
+    /// [`Bvh::build`], in the order of [`Model::add_triangle`](crate::model::Model::add_triangle)
+    /// calls) of the triangle in leaf slot `t`. A permutation of `0..num_tris()`. It maps what
+    /// the hierarchy knows back to what the caller gave: PQP 1.3's view of a model lists triangles
+    /// in the order added, and refitting takes new vertices in that order.
+    pub added: Vec<u32>,
     /// Which volume this model offers the collision query.
     pub collision: CollisionVolume,
     /// A bound on the scale of every node's swept sphere volume, a leaf's included (the magnitudes
@@ -129,12 +139,27 @@ impl Bvh {
         !self.tiny && self.scale <= RESCALE_HI && posed * (1.0 + 1e-6) <= RESCALE_HI
     }
 
+    /// A deep copy, or `Err(ModelOutOfMemory)` (see [`Model::try_clone`](crate::Model::try_clone)).
+    pub fn try_clone(&self) -> Result<Bvh, Error> {
+        Ok(Bvh {
+            nodes: try_copy(&self.nodes)?,
+            verts: try_copy(&self.verts)?,
+            faces: try_copy(&self.faces)?,
+            ids: try_copy(&self.ids)?,
+            added: try_copy(&self.added)?,
+            collision: self.collision,
+            scale: self.scale,
+            tiny: self.tiny,
+        })
+    }
+
     /// Bytes held by the hierarchy.
     pub fn memory_usage(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
             + self.verts.capacity() * std::mem::size_of::<Vec3>()
             + self.faces.capacity() * std::mem::size_of::<[u32; 3]>()
             + self.ids.capacity() * std::mem::size_of::<i32>()
+            + self.added.capacity() * std::mem::size_of::<u32>()
             + std::mem::size_of::<Bvh>()
     }
 

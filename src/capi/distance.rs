@@ -6,8 +6,8 @@
 
 use super::{
     boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
-    pqp_search_options, read_pose, read_search, reset, stat, PosedModel, DEFAULT_SEARCH_OPTIONS,
-    PQP_ERR_INTERNAL,
+    pqp_search_options, read_pose, read_search, reset, stat, status, write_pair, PosedModel,
+    DEFAULT_SEARCH_OPTIONS, PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
 use crate::query::{distance_into, DistanceOptions, DistanceResult, Search};
@@ -268,6 +268,30 @@ pub unsafe extern "C" fn pqp_distance_result_id1(r: *const pqp_distance_result) 
 #[no_mangle]
 pub unsafe extern "C" fn pqp_distance_result_id2(r: *const pqp_distance_result) -> c_int {
     boundary(-1, || {}, || deref(r).map_or(-1, |r| r.result.id2))
+}
+
+/// The triangles of the closest (or, when overlapping, an intersecting) triangle pair found by the
+/// last pqp_distance on r, by their positions in the order added: indices into pqp_model_tris of
+/// each model (what PQP 1.3's last_tri pointed at). They name the same triangles as
+/// pqp_distance_result_id1 and pqp_distance_result_id2.
+///
+/// @param r   the result.
+/// @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+///            before any query (r holds no pair then).
+/// @param t2  receives model 2's triangle, likewise.
+/// @return PQP_OK (also before any query, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or t2 is
+///         NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_distance_result_triangles(
+    r: *const pqp_distance_result,
+    t1: *mut c_int,
+    t2: *mut c_int,
+) -> c_int {
+    status(|| {
+        let r = &deref(r)?.result;
+        write_pair(t1, t2, r.tri1, r.tri2)
+    })
 }
 
 /// The number of bounding-volume distance tests the last pqp_distance on r performed.

@@ -26,6 +26,8 @@
 
 // In the order the header lists them (cbindgen follows the module order).
 mod model;
+// PQP 1.3's view of a model and its volumes' functions.
+mod legacy;
 // Collision.
 mod collide;
 // Separation distance.
@@ -40,6 +42,7 @@ mod misc;
 pub use collide::*;
 pub use convex::*;
 pub use distance::*;
+pub use legacy::*;
 pub use misc::*;
 pub use model::*;
 pub use tolerance::*;
@@ -320,6 +323,24 @@ pub(crate) unsafe fn reset<T: Default>(r: *mut T) {
 /// `r` is NULL or a live handle of its kind.
 pub(crate) unsafe fn stat<T>(r: *const T, get: impl FnOnce(&T) -> Stats) -> Option<Stats> {
     deref(r).ok().map(get)
+}
+
+/// Writes a triangle pair to C, or `Err(NullPointer)` (writing nothing) if a pointer is NULL.
+///
+/// # Safety
+/// Each pointer is NULL or writable.
+pub(crate) unsafe fn write_pair(
+    t1: *mut c_int,
+    t2: *mut c_int,
+    a: i32,
+    b: i32,
+) -> Result<(), Error> {
+    if t1.is_null() || t2.is_null() {
+        return Err(Error::NullPointer);
+    }
+    t1.write(a);
+    t2.write(b);
+    Ok(())
 }
 
 /// A counter for C's `int64_t` (saturating; no query performs 2^63 tests).

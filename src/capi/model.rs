@@ -1,8 +1,12 @@
 //! Model handles and PQP's build protocol (begin, add triangles, end).
 
-use super::{boundary, deref, deref_mut, free_handle, into_handle, read_doubles, status};
+use super::legacy::LegacyView;
+use super::{
+    boundary, code, deref, deref_mut, free_handle, into_handle, read_doubles, status,
+    PQP_ERR_INTERNAL,
+};
 use crate::error::Error;
-use crate::model::{CollisionVolume, Model, VolumeKind};
+use crate::model::{BuildState, CollisionVolume, Model, VolumeKind};
 use std::ffi::c_int;
 
 /// Volume choice (pqp_model_set_volume): rectangle swept spheres, PQP's choice and the default.
@@ -19,12 +23,23 @@ pub const PQP_BV_HYBRID: c_int = 3;
 pub const PQP_COLLIDE_OBB: c_int = 0;
 /// Collision volume choice (pqp_model_set_collision_volume): the model's swept sphere volumes.
 pub const PQP_COLLIDE_SSV: c_int = 1;
+/// Build state (pqp_model_build_state): fresh or cleared, no build begun (PQP 1.3's name and
+/// value).
+pub const PQP_BUILD_STATE_EMPTY: c_int = 0;
+/// Build state (pqp_model_build_state): begun (by pqp_model_begin, or by pqp_model_add_tri on an
+/// empty model) and not built since (PQP 1.3's name and value).
+pub const PQP_BUILD_STATE_BEGUN: c_int = 1;
+/// Build state (pqp_model_build_state): built by a successful pqp_model_end (PQP 1.3's name and
+/// value).
+pub const PQP_BUILD_STATE_PROCESSED: c_int = 2;
 
 /// A triangle model (opaque). Create with pqp_model_create, fill with pqp_model_begin,
 /// pqp_model_add_tri and pqp_model_end, free with pqp_model_destroy.
 #[allow(non_camel_case_types)]
 pub struct pqp_model {
     pub(crate) model: Model,
+    /// PQP 1.3's view of the model, made on request (pqp_model_tris, pqp_model_bvs).
+    pub(crate) view: LegacyView,
 }
 
 // Queries take `const pqp_model *` from any number of threads at once: the model must be shareable.
@@ -46,6 +61,7 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
         || {
             into_handle(pqp_model {
                 model: Model::new(),
+                view: LegacyView::default(),
             })
         },
     )
@@ -59,6 +75,77 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
     boundary((), || {}, || free_handle(m))
+}
+
+/// Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the
+/// triangles added so far; the copy can go on being built), or built (the copy is built, with the
+/// same hierarchy bit for bit, and answers every query exactly as m does). The volume choices are
+/// copied too. Building, rebuilding or destroying either model never affects the other.
+///
+/// @param out  receives the copy (free it with pqp_model_destroy), or NULL on any error.
+/// @param m    the model to copy.
+/// @return PQP_OK; PQP_ERR_NULL_POINTER if out or m is NULL; PQP_ERR_MODEL_OUT_OF_MEMORY if the
+///         copy could not be allocated; PQP_ERR_INTERNAL on an internal fault (*out is then NULL).
+/// Thread safety: may run concurrently with queries and getters on m (a built model may be copied
+///                while other threads query it), not with build calls on m.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_clone(out: *mut *mut pqp_model, m: *const pqp_model) -> c_int {
+    boundary(
+        PQP_ERR_INTERNAL,
+        || {
+            if !out.is_null() {
+                out.write(std::ptr::null_mut());
+            }
+        },
+        || code(clone_into(out, m)),
+    )
+}
+
+/// The body of pqp_model_clone: NULL in `out` until the copy is made, so that no error leaves a
+/// handle there.
+///
+/// # Safety
+/// `out` is NULL or points to a writable `pqp_model *`; `m` is NULL or a live handle.
+unsafe fn clone_into(out: *mut *mut pqp_model, m: *const pqp_model) -> Result<(), Error> {
+    if out.is_null() {
+        return Err(Error::NullPointer);
+    }
+    out.write(std::ptr::null_mut());
+    // The views are not copied: the copy makes its own on request.
+    let copy = pqp_model {
+        model: deref(m)?.model.try_clone()?,
+        view: LegacyView::default(),
+    };
+    let h = into_handle(copy);
+    if h.is_null() {
+        return Err(Error::ModelOutOfMemory);
+    }
+    out.write(h);
+    Ok(())
+}
+
+/// Where a model is in PQP's build protocol (PQP 1.3's build_state).
+///
+/// @param m  the model, or NULL.
+/// @return PQP_BUILD_STATE_EMPTY (0) for a fresh model (pqp_model_end leaves it so; as
+///         pqp_model_begin clears a model and begins it, no other model is empty);
+///         PQP_BUILD_STATE_BEGUN (1) after pqp_model_begin or pqp_model_add_tri (even one that
+///         refused its triangle) until a successful pqp_model_end; PQP_BUILD_STATE_PROCESSED (2)
+///         once built; 0 if m is NULL.
+/// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_model_build_state(m: *const pqp_model) -> c_int {
+    boundary(
+        PQP_BUILD_STATE_EMPTY,
+        || {},
+        || {
+            deref(m).map_or(PQP_BUILD_STATE_EMPTY, |m| match m.model.build_state() {
+                BuildState::Empty => PQP_BUILD_STATE_EMPTY,
+                BuildState::Begun => PQP_BUILD_STATE_BEGUN,
+                BuildState::Built => PQP_BUILD_STATE_PROCESSED,
+            })
+        },
+    )
 }
 
 /// Starts building a model (PQP's BeginModel).
@@ -75,6 +162,7 @@ pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
 pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int) -> c_int {
     status(|| {
         let m = deref_mut(m)?;
+        m.view.begun();
         m.model.begin(usize::try_from(num_tris_hint).unwrap_or(0))
     })
 }
@@ -92,7 +180,9 @@ pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, p1, p2 or p3 is NULL;
 ///         PQP_ERR_BUILD_OUT_OF_SEQUENCE after a successful pqp_model_end (the triangle is ignored);
 ///         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
-///         magnitude (the triangle is refused; the model stays usable);
+///         magnitude (the triangle is not stored; the model keeps the triangles it had and stays
+///         usable; an empty model is begun all the same, as the implicit begin comes first:
+///         pqp_model_build_state then gives PQP_BUILD_STATE_BEGUN);
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY if the triangle could not be stored;
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
@@ -107,7 +197,12 @@ pub unsafe extern "C" fn pqp_model_add_tri(
     status(|| {
         let m = deref_mut(m)?;
         let (a, b, c) = (read_doubles(p1)?, read_doubles(p2)?, read_doubles(p3)?);
-        m.model.add_triangle(a, b, c, id)
+        let before = m.model.num_triangles();
+        let result = m.model.add_triangle(a, b, c, id);
+        let stored = m.model.num_triangles() > before;
+        m.view
+            .added(stored.then(|| ([a.into(), b.into(), c.into()], id)));
+        result
     })
 }
 
@@ -116,14 +211,18 @@ pub unsafe extern "C" fn pqp_model_add_tri(
 ///
 /// @param m  the model.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model
-///         is already built or was never begun (no pqp_model_begin or pqp_model_add_tri);
-///         PQP_ERR_BUILD_EMPTY_MODEL if no triangle was added (the model stays unbuilt: queries
-///         return PQP_ERR_UNPROCESSED_MODEL); PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could
-///         not be allocated; PQP_ERR_INTERNAL on an internal fault.
+///         is already built (it stays built); PQP_ERR_BUILD_EMPTY_MODEL if the model holds no
+///         triangle, whether begun or not (a fresh model included; as PQP 1.3): the model stays
+///         unbuilt, in its state (queries return PQP_ERR_UNPROCESSED_MODEL);
+///         PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could not be allocated; PQP_ERR_INTERNAL
+///         on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
-    status(|| deref_mut(m)?.model.end())
+    status(|| {
+        // PQP 1.3's views stay (see LegacyView).
+        deref_mut(m)?.model.end()
+    })
 }
 
 /// Chooses the swept sphere volume a model's hierarchy is built with, for distance and tolerance
@@ -194,14 +293,26 @@ pub unsafe extern "C" fn pqp_model_num_tris(m: *const pqp_model) -> c_int {
     )
 }
 
-/// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping).
+/// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping), including PQP
+/// 1.3's view of it once asked for (pqp_model_tris, pqp_model_bvs and their float forms make it on
+/// their first call and keep it; a model never asked costs nothing for it).
 ///
 /// @param m  the model, or NULL.
 /// @return the byte count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
 #[no_mangle]
 pub unsafe extern "C" fn pqp_model_memory_usage(m: *const pqp_model) -> u64 {
-    boundary(0, || {}, || deref(m).map_or(0, |m| m.model.memory_usage()))
+    boundary(
+        0,
+        || {},
+        || {
+            deref(m).map_or(0, |m| {
+                // The handle beyond the model, and the views' arrays.
+                let extra = std::mem::size_of::<pqp_model>() - std::mem::size_of::<Model>();
+                m.model.memory_usage() + (extra + m.view.memory_usage()) as u64
+            })
+        },
+    )
 }
 
 /// Whether a model is built (its last pqp_model_end succeeded) and can be queried.

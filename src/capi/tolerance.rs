@@ -6,7 +6,8 @@
 
 use super::{
     boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
-    pqp_search_options, read_pose, read_search, reset, stat, PosedModel, PQP_ERR_INTERNAL,
+    pqp_search_options, read_pose, read_search, reset, stat, status, write_pair, PosedModel,
+    PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
 use crate::query::{tolerance_into, Search, ToleranceResult};
@@ -235,6 +236,29 @@ pub unsafe extern "C" fn pqp_tolerance_result_p2(r: *const pqp_tolerance_result)
         || {},
         || deref(r).map_or(ptr::null(), |r| r.result.p2.as_ptr()),
     )
+}
+
+/// When the last pqp_tolerance on r found the models closer than the tolerance: the triangles of
+/// the pair within the tolerance, by their positions in the order added (indices into
+/// pqp_model_tris of each model, what PQP 1.3's last_tri pointed at). Otherwise -1 and -1.
+///
+/// @param r   the result.
+/// @param t1  receives model 1's triangle: 0 for the first triangle added to it, and so on; -1
+///            before any query, or when the models were not within the tolerance (no pair then).
+/// @param t2  receives model 2's triangle, likewise.
+/// @return PQP_OK (also when there is no pair, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or
+///         t2 is NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
+/// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
+#[no_mangle]
+pub unsafe extern "C" fn pqp_tolerance_result_triangles(
+    r: *const pqp_tolerance_result,
+    t1: *mut c_int,
+    t2: *mut c_int,
+) -> c_int {
+    status(|| {
+        let r = &deref(r)?.result;
+        write_pair(t1, t2, r.tri1, r.tri2)
+    })
 }
 
 /// The number of bounding-volume distance tests the last pqp_tolerance on r performed.

@@ -75,6 +75,11 @@ pub struct DistanceResult {
     pub id1: i32,
     /// Id of model 2's triangle of the closest pair.
     pub id2: i32,
+    /// Model 1's triangle of the closest pair by its position in the order added (0 for the
+    /// first triangle given to the model, as PQP 1.3's `tris` lists them); -1 before any query.
+    pub tri1: i32,
+    /// As `tri1`, for model 2.
+    pub tri2: i32,
     /// Work done.
     pub stats: Stats,
     pub(crate) cache: Option<TriCache>,
@@ -90,6 +95,8 @@ impl Default for DistanceResult {
             overlap: false,
             id1: -1,
             id2: -1,
+            tri1: -1,
+            tri2: -1,
             stats: Stats::default(),
             cache: None,
             front: Front::default(),
@@ -193,6 +200,8 @@ pub fn distance_into(
     result.p2 = rel.apply_inverse(&best.q);
     result.id1 = b1.ids[best.ta];
     result.id2 = b2.ids[best.tb];
+    result.tri1 = b1.added[best.ta] as i32;
+    result.tri2 = b2.added[best.tb] as i32;
     result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
     result.stats.query_time_secs = start.elapsed().as_secs_f64();
     Ok(())

@@ -28,6 +28,11 @@ pub struct ToleranceResult {
     pub id1: i32,
     /// See `id1`.
     pub id2: i32,
+    /// When closer: model 1's triangle of that pair by its position in the order added (0 for
+    /// the first triangle given to the model, as PQP 1.3's `tris` lists them); otherwise -1.
+    pub tri1: i32,
+    /// As `tri1`, for model 2.
+    pub tri2: i32,
     /// Work done.
     pub stats: Stats,
     pub(crate) cache: Option<TriCache>,
@@ -43,6 +48,8 @@ impl Default for ToleranceResult {
             p2: Vec3::zeros(),
             id1: -1,
             id2: -1,
+            tri1: -1,
+            tri2: -1,
             stats: Stats::default(),
             cache: None,
         }
@@ -134,6 +141,8 @@ pub fn tolerance_into(
         result.p2 = rel.apply_inverse(&best.q);
         result.id1 = b1.ids[best.ta];
         result.id2 = b2.ids[best.tb];
+        result.tri1 = b1.added[best.ta] as i32;
+        result.tri2 = b2.added[best.tb] as i32;
         result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
     } else {
         result.distance = best.d.min(search.pruned_min);
@@ -141,6 +150,8 @@ pub fn tolerance_into(
         result.p2 = Vec3::zeros();
         result.id1 = -1;
         result.id2 = -1;
+        result.tri1 = -1;
+        result.tri2 = -1;
         // The nearest pair seen, if any was tested, is the best start for the next query.
         if best.d.is_finite() {
             result.cache = Some(TriCache::new(m1, m2, best.ta, best.tb));
