@@ -74,7 +74,10 @@ fn pqp13_programs_in_their_standards() {
     let dir = root().join("c_api_tests/pqp13");
     let manifest = std::fs::read_to_string(dir.join("programs.txt")).expect("programs.txt");
     let mut built = 0;
-    for line in manifest.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
+    for line in manifest
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+    {
         let mut words = line.split_whitespace();
         let name = words.next().expect("a program name");
         let (stds, flags): (Vec<&str>, Vec<&str>) = words.partition(|w| !w.starts_with('-'));

@@ -243,20 +243,28 @@ fn cxx_header_declares_every_code_and_flag_as_a_constant() {
     let cxx = std::fs::read_to_string(root().join("include/pqp/pqp_cxx.h")).expect("pqp_cxx.h");
     let mut checked = 0;
     for line in checked_in().lines() {
-        let Some(rest) = line.strip_prefix("#define ") else { continue };
+        let Some(rest) = line.strip_prefix("#define ") else {
+            continue;
+        };
         let name = rest.split_whitespace().next().unwrap_or("");
         let is_code = name == "PQP_OK" || name.starts_with("PQP_ERR_");
         if !(is_code || name.ends_with("_CONTACTS") || name.ends_with("_CONTACT")) {
             continue;
         }
-        assert!(cxx.contains(&format!("#undef {name}\n")), "pqp_cxx.h does not #undef {name}");
+        assert!(
+            cxx.contains(&format!("#undef {name}\n")),
+            "pqp_cxx.h does not #undef {name}"
+        );
         assert!(
             cxx.contains(&format!("const int {name} = ")),
             "pqp_cxx.h does not declare const int {name}"
         );
         checked += 1;
     }
-    assert!(checked >= 15, "only {checked} codes and flags found in pqp.h");
+    assert!(
+        checked >= 15,
+        "only {checked} codes and flags found in pqp.h"
+    );
 }
 
 /// Every exported function runs its body through the one boundary helper (`boundary`, or `status`

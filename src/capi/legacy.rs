@@ -13,6 +13,7 @@ use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
 use crate::math::{Mat3, Pose, RelPose, Vec3};
 use crate::model::Model;
+use std::cell::UnsafeCell;
 use std::ffi::c_int;
 use std::ptr;
 use std::sync::OnceLock;
@@ -172,11 +173,31 @@ impl ViewBv for pqp_bv_float {
 /// had no volume view while one that was is left unchanged).
 #[derive(Debug, Default)]
 pub(crate) struct LegacyView {
-    tris: OnceLock<Vec<pqp_tri>>,
-    tris_float: OnceLock<Vec<pqp_tri_float>>,
-    bvs: OnceLock<Vec<pqp_bv>>,
-    bvs_float: OnceLock<Vec<pqp_bv_float>>,
+    tris: OnceLock<Vec<Entry<pqp_tri>>>,
+    tris_float: OnceLock<Vec<Entry<pqp_tri_float>>>,
+    bvs: OnceLock<Vec<Entry<pqp_bv>>>,
+    bvs_float: OnceLock<Vec<Entry<pqp_bv_float>>>,
 }
+
+/// An entry of a view. C reads it through the `const` pointer the getters give, but PQP 1.3's
+/// members were plain pointers, and PQP.h hands C++ programs non-`const` ones, through which a
+/// program may write: the cell makes such writes legitimate, as writes through a shared reference
+/// are not. Laid out as `T` (the getters hand out the array as one of `T`).
+#[repr(transparent)]
+#[derive(Debug)]
+struct Entry<T>(UnsafeCell<T>);
+
+impl<T> Entry<T> {
+    fn new(value: T) -> Self {
+        Entry(UnsafeCell::new(value))
+    }
+}
+
+// SAFETY: Rust code never reads an entry after storing it (appending moves entries, under the
+// `&mut` of a build call, which excludes every other call on the model); the entries' values are
+// plain data (`Send`), and ordering C's reads and writes of them is the C program's part, as for
+// any array it writes to.
+unsafe impl<T: Send> Sync for Entry<T> {}
 
 impl LegacyView {
     /// After `begin`: the model is cleared, so is every view.
@@ -189,10 +210,10 @@ impl LegacyView {
     /// add does linear work in all, not quadratic. A model being built has no volume view.
     pub(crate) fn added(&mut self, stored: Option<(Tri, i32)>) {
         let Some((t, id)) = stored else { return };
-        fn append<T: ViewTri>(cell: &mut OnceLock<Vec<T>>, t: &Tri, id: i32) {
+        fn append<T: ViewTri>(cell: &mut OnceLock<Vec<Entry<T>>>, t: &Tri, id: i32) {
             if let Some(v) = cell.get_mut() {
                 if v.try_reserve(1).is_ok() {
-                    v.push(T::new(t, id));
+                    v.push(Entry::new(T::new(t, id)));
                 } else {
                     cell.take();
                 }
@@ -206,7 +227,7 @@ impl LegacyView {
 
     /// Bytes the views hold.
     pub(crate) fn memory_usage(&self) -> usize {
-        fn bytes<T>(cell: &OnceLock<Vec<T>>) -> usize {
+        fn bytes<T>(cell: &OnceLock<Vec<Entry<T>>>) -> usize {
             cell.get()
                 .map_or(0, |v| v.capacity() * std::mem::size_of::<T>())
         }
@@ -217,9 +238,9 @@ impl LegacyView {
 /// The view in `cell`, made by `make` if there is none yet. Threads asking at once may each make
 /// one; the first stored is kept and every caller gets it. A failed `make` stores nothing.
 fn view<T>(
-    cell: &OnceLock<Vec<T>>,
-    make: impl FnOnce() -> Result<Vec<T>, Error>,
-) -> Result<&[T], Error> {
+    cell: &OnceLock<Vec<Entry<T>>>,
+    make: impl FnOnce() -> Result<Vec<Entry<T>>, Error>,
+) -> Result<&[Entry<T>], Error> {
     if let Some(v) = cell.get() {
         return Ok(v);
     }
@@ -230,23 +251,23 @@ fn view<T>(
 }
 
 /// `n` default entries, or `Err(ModelOutOfMemory)`.
-fn filled<T: Copy + Default>(n: usize) -> Result<Vec<T>, Error> {
+fn filled<T: Copy + Default>(n: usize) -> Result<Vec<Entry<T>>, Error> {
     let mut v = Vec::new();
     v.try_reserve_exact(n)
         .map_err(|_| Error::ModelOutOfMemory)?;
-    v.resize(n, T::default());
+    v.extend((0..n).map(|_| Entry::new(T::default())));
     Ok(v)
 }
 
 /// Every triangle of `model` in the order added.
-fn make_tris<T: ViewTri>(model: &Model) -> Result<Vec<T>, Error> {
+fn make_tris<T: ViewTri>(model: &Model) -> Result<Vec<Entry<T>>, Error> {
     let mut v = filled::<T>(model.num_triangles())?;
-    model.for_each_added(|k, t, id| v[k] = T::new(&t, id));
+    model.for_each_added(|k, t, id| v[k] = Entry::new(T::new(&t, id)));
     Ok(v)
 }
 
 /// The volumes of a built `model` in PQP's layout.
-fn make_bvs<T: ViewBv>(model: &Model) -> Result<Vec<T>, Error> {
+fn make_bvs<T: ViewBv>(model: &Model) -> Result<Vec<Entry<T>>, Error> {
     let bvh = model.bvh()?;
     let n = 2 * bvh.num_tris() - 1;
     // The count and the child indices are C ints.
@@ -254,7 +275,7 @@ fn make_bvs<T: ViewBv>(model: &Model) -> Result<Vec<T>, Error> {
         return Err(Error::ModelOutOfMemory);
     }
     let mut v = filled::<T>(n)?;
-    bvh.pqp_view(|k, bv| v[k] = T::new(&bv))?;
+    bvh.pqp_view(|k, bv| v[k] = Entry::new(T::new(&bv)))?;
     Ok(v)
 }
 
@@ -280,7 +301,7 @@ unsafe fn hand_out<T>(
     m: *const pqp_model,
     out: *mut *const T,
     count: *mut c_int,
-    get: impl FnOnce(&pqp_model) -> Result<&[T], Error>,
+    get: impl FnOnce(&pqp_model) -> Result<&[Entry<T>], Error>,
 ) -> Result<(), Error> {
     clear(out, count);
     let m = deref(m)?;
@@ -293,7 +314,8 @@ unsafe fn hand_out<T>(
     out.write(if v.is_empty() {
         ptr::null()
     } else {
-        v.as_ptr()
+        // `Entry<T>` is laid out as `T`.
+        v.as_ptr().cast::<T>()
     });
     count.write(n);
     Ok(())
