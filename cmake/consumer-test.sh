@@ -3,7 +3,7 @@
 # prefix, then, in a temporary directory outside the source tree, checks what a user gets:
 #   - the installed files and links, the shared library's soname (readelf -d), and that it
 #     exports exactly the functions pqp/pqp.h declares;
-#   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all three),
+#   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all five),
 #     with -Wall -Wextra -pedantic -Werror;
 #   - programs built with `pkg-config --cflags --libs pqp`, with pkg-config --static against
 #     libpqp.a, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
@@ -43,7 +43,7 @@ inc=$prefix/$includedir
 
 step "installed files"
 for f in "$lib"/{libpqp.so.1.0.0,libpqp.so.1,libpqp.so,libpqp.a,libPQP.so,libPQP.a} \
-    "$inc"/{pqp/pqp.h,PQP.h,PQP_Compile.h} "$lib"/pkgconfig/pqp.pc \
+    "$inc"/{pqp/pqp.h,PQP.h,PQP_Compile.h,MatVec.h,TriDist.h} "$lib"/pkgconfig/pqp.pc \
     "$lib"/cmake/pqp/{pqpConfig.cmake,pqpConfigVersion.cmake}; do
     [[ -e $f ]] || fail "missing $f"
 done
@@ -73,7 +73,7 @@ printf '#include <pqp/pqp.h>\n' >h_c.c
 "$cc" -std=c99 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
 "$cc" -std=c11 "${warn[@]}" -I"$inc" -c h_c.c -o h_c.o
 for std in c++11 c++14 c++17 c++20; do
-    for h in pqp/pqp.h PQP.h PQP_Compile.h; do
+    for h in pqp/pqp.h PQP.h PQP_Compile.h MatVec.h TriDist.h; do
         printf '#include <%s>\n' "$h" >h_cxx.cpp
         "$cxx" -std=$std "${warn[@]}" -I"$inc" -c h_cxx.cpp -o h_cxx.o || fail "$h as $std"
     done

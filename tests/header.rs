@@ -216,7 +216,13 @@ fn c_header_compiles_alone_in_c99_and_c11() {
 #[test]
 fn headers_compile_alone_in_every_cxx_standard() {
     for std in ["c++98", "c++11", "c++14", "c++17", "c++20"] {
-        for header in ["pqp/pqp.h", "PQP.h", "PQP_Compile.h"] {
+        for header in [
+            "pqp/pqp.h",
+            "PQP.h",
+            "PQP_Compile.h",
+            "MatVec.h",
+            "TriDist.h",
+        ] {
             compile_header_alone(header, true, std);
         }
     }
