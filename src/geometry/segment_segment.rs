@@ -188,6 +188,22 @@ mod tests {
     }
 
     #[test]
+    fn start_and_direction_agree_with_endpoints() {
+        // Integer coordinates: the far endpoints p0 + d are exact, so both forms see the same
+        // segments and must give the same distance (to a rounding).
+        let mut rng = crate::test_rng::Lcg(7);
+        let mut int = || (rng.signed() * 8.0).round();
+        for _ in 0..2000 {
+            let mut v = || Vec3::new(int(), int(), int());
+            let (p, a, q, b) = (v(), v(), v(), v());
+            let e = segment_segment(&p, &(p + a), &q, &(q + b));
+            let d = segment_segment_dir(&p, &a, &q, &b);
+            assert!((d.distance - e.distance).abs() <= 1e-14 * (1.0 + e.distance));
+            assert!(((d.p - d.q).norm() - d.distance).abs() <= 1e-13);
+        }
+    }
+
+    #[test]
     fn parallel_and_degenerate() {
         let z = Vec3::zeros();
         let ex = Vec3::new(1.0, 0.0, 0.0);
