@@ -59,7 +59,8 @@ static int current_case = 0;      // the index of the case in its group
 static void fail(const char *file, int line, const char *what)
 {
     if (failures < 40)
-        fprintf(stderr, "%s:%d: [%s, case %d] expected %s\n", file, line, current, current_case, what);
+        fprintf(stderr, "%s:%d: [%s, case %d] expected %s\n", file, line, current, current_case,
+                what);
     failures++;
 }
 
@@ -331,7 +332,8 @@ static void check_vectors()
         VpV(r, a, b);
         for (int i = 0; i < 3; i++) NEAR(r[i], la[i] + lb[i], EPS * labs_(la[i] + lb[i]));
         VpVxS(r, a, b, s);
-        for (int i = 0; i < 3; i++) NEAR(r[i], la[i] + lb[i] * s, 2 * EPS * (labs_(la[i]) + labs_(lb[i] * s)));
+        for (int i = 0; i < 3; i++)
+            NEAR(r[i], la[i] + lb[i] * s, 2 * EPS * (labs_(la[i]) + labs_(lb[i] * s)));
         VxS(r, a, s);
         for (int i = 0; i < 3; i++) NEAR(r[i], la[i] * s, EPS * labs_(la[i] * s));
         VcrossV(r, a, b);
@@ -350,7 +352,8 @@ static void check_vectors()
         VcV(X, a); VcrossV(X, X, b); VcrossV(r, a, b); EXPECT(same_vector(X, r));
         VcV(X, b); VcrossV(X, a, X); EXPECT(same_vector(X, r));
         // Dot product, squared distance, length, normalization.
-        NEAR(VdotV(a, b), ldot(la, lb), 2 * EPS * (labs_(la[0] * lb[0]) + labs_(la[1] * lb[1]) + labs_(la[2] * lb[2])));
+        LD terms = labs_(la[0] * lb[0]) + labs_(la[1] * lb[1]) + labs_(la[2] * lb[2]);
+        NEAR(VdotV(a, b), ldot(la, lb), 2 * EPS * terms);
         LD d2 = 0;
         for (int i = 0; i < 3; i++) d2 += (la[i] - lb[i]) * (la[i] - lb[i]);
         NEAR(VdistV2(a, b), d2, 4 * EPS * d2);
@@ -377,7 +380,8 @@ static void check_vectors()
     EXPECT(Vlength(z) == 0);
 }
 
-// v rotated by angle t about the unit axis u (Rodrigues: v cos t + (u x v) sin t + u (u.v)(1 - cos t)).
+// v rotated by angle t about the unit axis u, by Rodrigues' formula:
+// v cos t + (u x v) sin t + u (u.v)(1 - cos t).
 static void rodrigues(LD r[3], const LD u[3], LD t, const LD v[3])
 {
     LD c = std::cos(t), s = std::sin(t), uv = ldot(u, v), uxv[3];
@@ -600,8 +604,22 @@ static void check_eigen()
     PQP_REAL rank1[3][3] = {{1, 2, 3}, {2, 4, 6}, {3, 6, 9}};
     LD r1[3] = {14, 0, 0};
     check_eigen_of(rank1, r1);
+    // A NaN or infinite entry gives non-finite eigenvalues (not a plausible answer).
+    const int where[3][2] = {{0, 0}, {0, 1}, {1, 2}}; // on the diagonal, off it
+    for (int k = 0; k < 6; k++) {
+        PQP_REAL bad[3][3] = {{1, 2, 3}, {2, 4, 5}, {3, 5, 6}}, v[3][3], d[3];
+        PQP_REAL x = k % 2 ? std::numeric_limits<PQP_REAL>::infinity()
+                           : std::numeric_limits<PQP_REAL>::quiet_NaN();
+        int r = where[k / 2][0], c = where[k / 2][1];
+        bad[r][c] = bad[c][r] = x;
+        Meigen(v, d, bad);
+        bool finite = true;
+        for (int i = 0; i < 3; i++) finite = finite && d[i] - d[i] == 0;
+        EXPECT(!finite);
+    }
     // Only the upper triangle is read.
-    PQP_REAL upper[3][3] = {{1, 2, 3}, {-7, 4, 5}, {8, 9, 6}}, sym[3][3] = {{1, 2, 3}, {2, 4, 5}, {3, 5, 6}};
+    PQP_REAL upper[3][3] = {{1, 2, 3}, {-7, 4, 5}, {8, 9, 6}};
+    PQP_REAL sym[3][3] = {{1, 2, 3}, {2, 4, 5}, {3, 5, 6}};
     PQP_REAL v1[3][3], v2[3][3], d1[3], d2[3];
     Meigen(v1, d1, upper);
     Meigen(v2, d2, sym);
@@ -620,7 +638,10 @@ static void check_ogl()
         // Column-major: entry (row i, column j) at 4 j + i.
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++) {
-                double want = i < 3 && j < 3 ? (double)R[i][j] : j == 3 && i < 3 ? (double)T[i] : i == 3 && j == 3 ? 1 : 0;
+                double want = 0;
+                if (i < 3 && j < 3) want = (double)R[i][j];
+                if (i < 3 && j == 3) want = (double)T[i];
+                if (i == 3 && j == 3) want = 1;
                 EXPECT(m[4 * j + i] == want);
             }
         OGLtoMV(R2, T2, m);
@@ -644,7 +665,8 @@ static void check_misc()
     FILE *f = tmpfile();
     EXPECT(f != NULL);
     if (f == NULL) return;
-    PQP_REAL M[3][3] = {{1, (PQP_REAL)-2.5, 3}, {(PQP_REAL)0.125, 0, 1000000}, {(PQP_REAL)1e-7, 7, 8}};
+    PQP_REAL M[3][3] = {
+        {1, (PQP_REAL)-2.5, 3}, {(PQP_REAL)0.125, 0, 1000000}, {(PQP_REAL)1e-7, 7, 8}};
     PQP_REAL V[3] = {(PQP_REAL)0.5, -1, 123456};
     Mfprint(f, M);
     Vfprint(f, V);
@@ -897,7 +919,8 @@ static void check_triangles()
 #ifdef PQP_TEST_FLOAT
         PQP_REAL k = (PQP_REAL)std::ldexp(1.0, uniform_int(-100, 100));
 #else
-        PQP_REAL k = (PQP_REAL)std::ldexp(1.0, uniform_int(-900, 480)); // up to 1e150 and down to 1e-270
+        // Coordinates up to about 1e145 and down to about 1e-271.
+        PQP_REAL k = (PQP_REAL)std::ldexp(1.0, uniform_int(-900, 480));
 #endif
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) s[i][j] *= k, t[i][j] *= k;
@@ -965,11 +988,13 @@ static void check_triangles()
         }
         int w[3] = {uniform_int(0, 8), uniform_int(0, 8), 0};
         w[2] = 16 - w[0] - w[1];
-        for (int k = 0; k < 3; k++) t[0][k] = (PQP_REAL)((w[0] * s[0][k] + w[1] * s[1][k] + w[2] * s[2][k]) / 16.0);
+        for (int k = 0; k < 3; k++)
+            t[0][k] = (PQP_REAL)((w[0] * s[0][k] + w[1] * s[1][k] + w[2] * s[2][k]) / 16.0);
         for (int i = 1; i < 3; i++) {
             t[i][0] = (PQP_REAL)uniform(-8, 8);
             t[i][1] = (PQP_REAL)uniform(-8, 8);
-            t[i][2] = c + (PQP_REAL)((current_case % 2 && i == 2) ? -uniform(0.1, 4) : uniform(0.1, 4));
+            double h = uniform(0.1, 4);
+            t[i][2] = c + (PQP_REAL)((current_case % 2 && i == 2) ? -h : h);
         }
         shuffle_axes(s, t);
         check_tridist(s, t, true);
@@ -1080,7 +1105,10 @@ static void check_segpoints(const PQP_REAL P[3], const PQP_REAL A[3], const PQP_
         lcross(n, lA, lB);
         for (int i = 0; i < 3; i++) r[i] = lQ[i] - lP[i];
         LD sign = ldot(n, r) < 0 ? -1 : 1;
-        for (int i = 0; i < 3; i++) NEAR(VEC[i], sign * n[i], 2 * EPS * (labs_(lA[(i + 1) % 3] * lB[(i + 2) % 3]) + labs_(lA[(i + 2) % 3] * lB[(i + 1) % 3])));
+        for (int i = 0; i < 3; i++) {
+            int j = (i + 1) % 3, k = (i + 2) % 3;
+            NEAR(VEC[i], sign * n[i], 2 * EPS * (labs_(lA[j] * lB[k]) + labs_(lA[k] * lB[j])));
+        }
         LD v[3];
         to_ld(v, VEC);
         EXPECT(ldot(v, r) >= -ABS * scale * scale * scale);

@@ -25,6 +25,7 @@
 
 #include "PQP_Compile.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 
@@ -440,7 +441,7 @@ inline void Meigen(PQP_REAL vout[3][3], PQP_REAL dout[3], const PQP_REAL a[3][3]
         }
     /* Scale by 2^-e with 2^(e-1) <= big < 2^e (exact). */
     int e = 0;
-    if (big > 0 && big <= 1.7976931348623157e308) frexp(big, &e);
+    if (big > 0 && big <= DBL_MAX) frexp(big, &e);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) A[i][j] = ldexp(A[i][j], -e);
     double V[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -448,8 +449,8 @@ inline void Meigen(PQP_REAL vout[3][3], PQP_REAL dout[3], const PQP_REAL a[3][3]
         double off = fabs(A[0][1]) + fabs(A[0][2]) + fabs(A[1][2]);
         /* The entries of A started below 1 in magnitude (rotations keep the Frobenius norm, so
          * they stay below 3): an off-diagonal sum of 1e-18 is below a hundredth of a rounding of
-         * the matrix. A NaN never compares below: it runs all sweeps and spreads to every
-         * output. */
+         * the matrix. A NaN or infinite entry makes the eigenvalues non-finite (a NaN sum
+         * never compares below, and runs all sweeps). */
         if (off <= 1e-18) break;
         for (int p = 0; p < 2; p++)
             for (int q = p + 1; q < 3; q++) {
