@@ -110,7 +110,13 @@ static double decade(int lo, int hi)
 
 static void random_vector(PQP_REAL v[3], double scale)
 {
-    for (int i = 0; i < 3; i++) v[i] = (PQP_REAL)(uniform(-1, 1) * scale);
+    for (int i = 0; i < 3; i++) {
+        // Through a volatile: with PQP_REAL float, g++ 12.2 at -O3 (its SLP vectorizer) inlined
+        // this into check_ogl and stored the double value, not its float rounding, into
+        // MVtoOGL's output (seen in the assembly; -fno-tree-slp-vectorize or -O2 do not).
+        volatile PQP_REAL x = (PQP_REAL)(uniform(-1, 1) * scale);
+        v[i] = x;
+    }
 }
 
 static void random_matrix(PQP_REAL m[3][3], double scale)
