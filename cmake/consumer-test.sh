@@ -3,7 +3,7 @@
 # prefix, then, in a temporary directory outside the source tree, checks what a user gets:
 #   - the installed files and links, the shared library's soname (readelf -d), and that it
 #     exports exactly the functions pqp/pqp.h declares;
-#   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all three),
+#   - every installed header compiles alone (C99 for pqp/pqp.h, C++11..20 for all five),
 #     with -Wall -Wextra -pedantic -Werror;
 #   - the PQP 1.3 programs of c_api_tests/pqp13 (programs.txt), each in every standard listed,
 #     with pkg-config, and with find_package(pqp) in its first;

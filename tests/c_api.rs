@@ -99,6 +99,27 @@ fn pqp13_programs_in_their_standards() {
     assert!(built >= 7, "programs.txt lists {built} builds");
 }
 
+/// PQP 1.3's MatVec.h and TriDist.h: every MatVec.h helper against reference arithmetic, TriDist
+/// and SegPoints against a long double reference on thousands of random pairs, with PQP_REAL
+/// double (as C++98 and C++17) and float (matvec_tridist_float.cpp).
+#[test]
+fn matvec_and_tridist_headers() {
+    for (source, std) in [
+        ("matvec_tridist.cpp", "c++98"),
+        ("matvec_tridist.cpp", "c++17"),
+        ("matvec_tridist_float.cpp", "c++11"),
+    ] {
+        let name = format!(
+            "{}_{}",
+            source.trim_end_matches(".cpp"),
+            std.replace('+', "x")
+        );
+        let exe = build_program(&root().join("c_api_tests").join(source), std, &name);
+        let out = run_program(&exe);
+        assert!(out.contains("all checks passed"), "{name}: {out}");
+    }
+}
+
 /// The static library links with exactly the system libraries pqp.pc lists as private.
 #[test]
 fn static_library_links_with_the_documented_libraries() {

@@ -1,5 +1,8 @@
-// PQP 1.3 code using an installed pqp-rs through PQP.h: two triangles 2 apart.
+// PQP 1.3 code using an installed pqp-rs through PQP.h, MatVec.h and TriDist.h: two triangles 2
+// apart.
+#include "MatVec.h"
 #include "PQP.h"
+#include "TriDist.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -24,6 +27,10 @@ int main()
               tres.CloserThanTolerance() == 1 &&
               PQP_Collide(&cres, R, T1, &m1, R, T2, &m2) == PQP_OK && cres.Colliding() == 0 &&
               m1.num_tris == 1;
+    // The same two triangles through TriDist, the second placed with MatVec.h's helpers.
+    PQP_REAL s[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, t[3][3], p[3], q[3];
+    for (int i = 0; i < 3; i++) MxVpV(t[i], R, s[i], T2);
+    ok = ok && fabs(TriDist(p, q, s, t) - 2.0) < 1e-12 && fabs(VdistV2(p, q) - 4.0) < 1e-12;
     printf("consumer (PQP.h): %s\n", ok ? "ok" : "WRONG");
     return ok ? 0 : 1;
 }

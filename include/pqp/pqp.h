@@ -1717,6 +1717,58 @@ int64_t pqp_convex_result_num_iterations(const struct pqp_convex_result *r);
 int64_t pqp_convex_result_num_local_minima(const struct pqp_convex_result *r);
 
 /**
+ * Computes the distance between two triangles and a closest pair of points, exactly (PQP 1.3's
+ * TriDist, which TriDist.h wraps).
+ *
+ * Exact means: the distance is 0 exactly when the triangles share a point (intersect or touch),
+ * and otherwise correct to a few roundings of the triangles' size, also in the near-degenerate
+ * configurations where PQP 1.3's routine could be far off. When the triangles share a point, p
+ * and q are the same point, common to both (to rounding). A degenerate triangle (collinear or
+ * repeated vertices) counts as the segment or point it spans. Coordinates of any magnitude up to
+ * 1e150 (subnormals included) are answered as exactly as at unit scale.
+ *
+ * @param distance  where the distance is written (1 double).
+ * @param p         where the closest point on triangle s is written (3 doubles).
+ * @param q         where the closest point on triangle t is written (3 doubles).
+ * @param s         the first triangle: 9 doubles, its three vertices one after the other (x, y, z
+ *                  of each), as PQP's double s[3][3] (pass &s[0][0]).
+ * @param t         the second triangle, likewise.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_COORDINATE if a
+ *         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an
+ *         internal fault. On an error nothing is written. The outputs may overlap the inputs.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_triangle_distance(double *distance, double *p, double *q, const double *s, const double *t);
+
+/**
+ * Computes the distance between two segments and a closest pair of points (the closest points of
+ * PQP 1.3's SegPoints, which TriDist.h wraps).
+ *
+ * Each segment is given as PQP gives it, by a start point and a direction vector: the first is
+ * the points a + u da for u in [0, 1], the second b + v db for v in [0, 1]. Either direction may
+ * be zero (the segment is then a point). The distance is correct to a few roundings of the
+ * segments' size, also for parallel and nearly parallel segments (then one of the closest pairs
+ * is given). Coordinates of any magnitude up to 1e150 are answered as exactly as at unit scale.
+ *
+ * @param distance  where the distance is written (1 double).
+ * @param x         where the closest point on the first segment is written (3 doubles).
+ * @param y         where the closest point on the second segment is written (3 doubles).
+ * @param a, da     the first segment's start and direction (3 doubles each).
+ * @param b, db     the second segment's start and direction (3 doubles each).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_COORDINATE if a
+ *         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an
+ *         internal fault. On an error nothing is written. The outputs may overlap the inputs.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_segment_distance(double *distance,
+                         double *x,
+                         double *y,
+                         const double *a,
+                         const double *da,
+                         const double *b,
+                         const double *db);
+
+/**
  * Describes a status code.
  *
  * @param code  a value returned by a pqp_ function (PQP_OK or a PQP_ERR_ code).

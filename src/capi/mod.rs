@@ -36,12 +36,15 @@ mod distance;
 mod tolerance;
 // Convex polyhedra.
 mod convex;
+// Single triangles and segments (TriDist.h).
+mod geometry;
 // Error texts and version.
 mod misc;
 
 pub use collide::*;
 pub use convex::*;
 pub use distance::*;
+pub use geometry::*;
 pub use legacy::*;
 pub use misc::*;
 pub use model::*;

@@ -27,6 +27,30 @@ pub fn segment_segment(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3) -> ClosestPoi
     }
 }
 
+/// Closest points between the segments `p + s a` and `q + t b`, `s, t` in `[0, 1]`: each segment
+/// given by a start point and a direction vector (PQP 1.3's `SegPoints` takes them so). As
+/// [`segment_segment`], on the segments exactly as given: the far endpoints `p + a` and `q + b`,
+/// which would round, are never formed (except as the closest point when it is the far end).
+pub fn segment_segment_dir(p: &Vec3, a: &Vec3, q: &Vec3, b: &Vec3) -> ClosestPoints {
+    if let Some(k) = kernel_rescale(max_abs(&[p, a, q, b])) {
+        // Huge or tiny coordinates: work at unit scale (exactly, by a power of two).
+        let (s, inv) = (pow2(k), pow2(-k));
+        let r = segment_segment_dir(&(p * s), &(a * s), &(q * s), &(b * s));
+        return ClosestPoints {
+            distance: r.distance * inv,
+            p: r.p * inv,
+            q: r.q * inv,
+        };
+    }
+    let (aa, bb) = (a.norm_squared(), b.norm_squared());
+    let c = seg_seg(p, a, aa, recip(aa), q, b, bb, recip(bb));
+    ClosestPoints {
+        distance: length(&c.gap, c.dist2),
+        p: if c.s == 0.0 { *p } else { p + a * c.s },
+        q: if c.t == 0.0 { *q } else { q + b * c.t },
+    }
+}
+
 /// `p0 + s (p1 - p0)`, exactly an endpoint when `s` is 0 or 1.
 #[inline]
 pub(crate) fn point_on(p0: &Vec3, p1: &Vec3, d: &Vec3, s: f64) -> Vec3 {
@@ -161,6 +185,22 @@ mod tests {
             &(x + v * 0.5),
         );
         assert!(r.distance < 1e-15, "{}", r.distance);
+    }
+
+    #[test]
+    fn start_and_direction_agree_with_endpoints() {
+        // Integer coordinates: the far endpoints p0 + d are exact, so both forms see the same
+        // segments and must give the same distance (to a rounding).
+        let mut rng = crate::test_rng::Lcg(7);
+        let mut int = || (rng.signed() * 8.0).round();
+        for _ in 0..2000 {
+            let mut v = || Vec3::new(int(), int(), int());
+            let (p, a, q, b) = (v(), v(), v(), v());
+            let e = segment_segment(&p, &(p + a), &q, &(q + b));
+            let d = segment_segment_dir(&p, &a, &q, &b);
+            assert!((d.distance - e.distance).abs() <= 1e-14 * (1.0 + e.distance));
+            assert!(((d.p - d.q).norm() - d.distance).abs() <= 1e-13);
+        }
     }
 
     #[test]
