@@ -3,12 +3,11 @@
 
 #[cfg(test)]
 use super::NodeRef;
-use super::{Bvh, Node};
+use super::{Bvh, CollisionVolume, Node, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::{Tri, RESCALE_LO};
 use crate::math::{frame_from, Mat3, Vec3};
-use crate::model::{CollisionVolume, VolumeKind};
 use nalgebra::SymmetricEigen;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input

@@ -3,9 +3,9 @@
 //! Only inner nodes are stored, in one array, the root first. Each carries one frame (the principal
 //! axes both its volumes were fitted on; the third axis is stored as the cross product of the first
 //! two, recomputed on use exactly as the build computed it), a swept sphere volume (a PSS, LSS or
-//! RSS, as the model's [`VolumeKind`](crate::model::VolumeKind) chooses) for the distance and
-//! tolerance queries, and for collision when the model asks for it, and an overlap volume (OBB) for
-//! collision, both in model coordinates (a test composes the relative pose with the axes, so no
+//! RSS, as the model's [`VolumeKind`] chooses) for the distance and tolerance queries, and for
+//! collision when the model asks for it, and an overlap volume (OBB) for collision, both in model
+//! coordinates (a test composes the relative pose with the axes, so no
 //! per-node frame chain is needed).
 //!
 //! A leaf is one triangle and stores no volume: its volumes are computed on use from the triangle
@@ -15,16 +15,17 @@
 
 mod build;
 mod pqp_view;
+mod volume_choice;
 
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
+pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::RESCALE_HI;
 use crate::math::{frame_from, Mat3, RelPose, Vec3};
-use crate::model::{try_copy, CollisionVolume};
 
 /// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
 /// a leaf, holding triangle `-r - 1`.
@@ -277,4 +278,13 @@ impl Bvh {
 #[inline(always)]
 pub(crate) fn leaf_triangle(r: NodeRef) -> usize {
     (-(r as i64) - 1) as usize
+}
+
+/// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
+pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(v.len())
+        .map_err(|_| Error::ModelOutOfMemory)?;
+    out.extend_from_slice(v);
+    Ok(out)
 }

@@ -118,7 +118,7 @@ impl Bvh {
 mod tests {
     use super::*;
     use crate::bounding_volume::BoundingVolume;
-    use crate::model::{CollisionVolume, VolumeKind};
+    use crate::bvh::{CollisionVolume, VolumeKind};
     use crate::test_rng::Lcg;
 
     /// The layout's tree, with each volume's absolute frame recomposed from its parent's: every

@@ -27,7 +27,7 @@
 //! the last query on the same models was that near, so that queries at unrelated poses do not pay
 //! for one: a coherent motion records from its second query and uses a front from its third.
 
-use super::search::{Search, Strategy};
+use super::strategy::{Search, Strategy};
 use super::traversal::NodePair;
 use crate::bvh::{Bvh, NodeRef};
 use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
