@@ -288,15 +288,17 @@ mod tests {
             let model = Model::from_triangles(tris).unwrap();
             let bvh = model.bvh().unwrap();
             fn below(b: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
-                if r < 0 {
-                    out.push(crate::bvh::leaf_triangle(r));
+                if r.is_leaf() {
+                    out.push(r.triangle());
                 } else {
-                    for c in b.nodes[r as usize].children {
+                    for c in b.children(r) {
                         below(b, c, out);
                     }
                 }
             }
-            let refs = (0..bvh.nodes.len() as NodeRef).chain((0..300).map(|t| -t - 1));
+            let refs = (0..bvh.num_inner())
+                .map(NodeRef::inner)
+                .chain((0..300).map(NodeRef::leaf));
             for r in refs {
                 let (o, e) = bvh.anchor(r);
                 let mut tri = Vec::new();

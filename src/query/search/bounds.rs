@@ -47,9 +47,9 @@ impl PosedVolumes {
     #[inline(always)]
     fn get(&mut self, r: NodeRef, second: bool, v: &CompactSsv, rel: &RelPose) -> &Ssv {
         // Nonzero, and distinct for every node of either model.
-        let key = ((r as u32 as u64) << 1 | u64::from(second)) + 1;
-        let i =
-            (r as u32 as usize).wrapping_add(usize::from(second) * (POSED_SLOTS / 2)) % POSED_SLOTS;
+        let key = ((r.raw() as u32 as u64) << 1 | u64::from(second)) + 1;
+        let i = (r.raw() as u32 as usize).wrapping_add(usize::from(second) * (POSED_SLOTS / 2))
+            % POSED_SLOTS;
         if self.keys[i] != key {
             self.volumes[i] = MaybeUninit::new(v.posed(rel, !second));
             self.keys[i] = key;
@@ -108,15 +108,15 @@ pub(crate) fn expand(
     leaves: &mut LeafVolumes,
 ) -> Option<[Child; 2]> {
     let (a, b) = (p.a, p.b);
-    let split_first = if b < 0 {
-        if a < 0 {
+    let split_first = if b.is_leaf() {
+        if a.is_leaf() {
             return None;
         }
         true
-    } else if a < 0 {
+    } else if a.is_leaf() {
         false
     } else {
-        b1.nodes[a as usize].ssv_size() >= b2.nodes[b as usize].ssv_size()
+        b1.inner_ssv_size(a) >= b2.inner_ssv_size(b)
     };
     // The fixed side is posed once, in the frame of the side being split; the children are read
     // where they lie (no copies).
@@ -125,7 +125,7 @@ pub(crate) fn expand(
         let fixed = leaves
             .posed
             .get(b, true, volume(b2, &mut leaves.second, b), rel);
-        let [c0, c1] = b1.nodes[a as usize].children;
+        let [c0, c1] = b1.children(a);
         let children = volumes(b1, &mut leaves.first, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, false, want, cutoff, slack);
         [pair(c0, b, d0), pair(c1, b, d1)]
@@ -133,7 +133,7 @@ pub(crate) fn expand(
         let fixed = leaves
             .posed
             .get(a, false, volume(b1, &mut leaves.first, a), rel);
-        let [c0, c1] = b2.nodes[b as usize].children;
+        let [c0, c1] = b2.children(b);
         let children = volumes(b2, &mut leaves.second, [c0, c1]);
         let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, true, want, cutoff, slack);
         [pair(a, c0, d0), pair(a, c1, d1)]
@@ -144,7 +144,7 @@ pub(crate) fn expand(
 /// `cache`.
 #[inline(always)]
 fn volume<'x>(b: &'x Bvh, cache: &'x mut LeafCache<CompactSsv>, r: NodeRef) -> &'x CompactSsv {
-    cache.get_ref(r, |r| &b.nodes[r as usize].ssv, |r| b.leaf_compact_ssv(r))
+    cache.get_ref(r, |r| b.inner_ssv(r), |r| b.leaf_compact_ssv(r))
 }
 
 /// As [`volume`], for two nodes at once.
@@ -154,7 +154,7 @@ fn volumes<'x>(
     cache: &'x mut LeafCache<CompactSsv>,
     rs: [NodeRef; 2],
 ) -> [&'x CompactSsv; 2] {
-    cache.get_two(rs, |r| &b.nodes[r as usize].ssv, |r| b.leaf_compact_ssv(r))
+    cache.get_two(rs, |r| b.inner_ssv(r), |r| b.leaf_compact_ssv(r))
 }
 
 /// The children of a BVTT node that pairs a leaf with an inner node, by how many of them are leaf
@@ -171,10 +171,10 @@ pub(super) enum LeafChildren {
 /// See [`LeafChildren`].
 #[inline]
 pub(super) fn leaf_children(b1: &Bvh, b2: &Bvh, p: &NodePair) -> LeafChildren {
-    let (leaf_first, node) = if p.a < 0 && p.b >= 0 {
-        (true, b2.nodes[p.b as usize].children)
-    } else if p.b < 0 && p.a >= 0 {
-        (false, b1.nodes[p.a as usize].children)
+    let (leaf_first, node) = if p.a.is_leaf() && !p.b.is_leaf() {
+        (true, b2.children(p.b))
+    } else if p.b.is_leaf() && !p.a.is_leaf() {
+        (false, b1.children(p.a))
     } else {
         return LeafChildren::None;
     };
@@ -183,9 +183,9 @@ pub(super) fn leaf_children(b1: &Bvh, b2: &Bvh, p: &NodePair) -> LeafChildren {
         NodePair { a, b, ..*p }
     };
     match node {
-        [c0, c1] if c0 < 0 && c1 < 0 => LeafChildren::Both([pair(c0), pair(c1)]),
-        [c0, c1] if c0 < 0 => LeafChildren::One(pair(c0), pair(c1)),
-        [c0, c1] if c1 < 0 => LeafChildren::One(pair(c1), pair(c0)),
+        [c0, c1] if c0.is_leaf() && c1.is_leaf() => LeafChildren::Both([pair(c0), pair(c1)]),
+        [c0, c1] if c0.is_leaf() => LeafChildren::One(pair(c0), pair(c1)),
+        [c0, c1] if c1.is_leaf() => LeafChildren::One(pair(c1), pair(c0)),
         _ => LeafChildren::None,
     }
 }
@@ -204,17 +204,17 @@ pub(super) fn bound_one(
     want: Want,
     leaves: &mut LeafVolumes,
 ) -> Child {
-    let [(bound, axis)] = if p.a < 0 {
+    let [(bound, axis)] = if p.a.is_leaf() {
         let fixed = leaves
             .posed
             .get(p.a, false, volume(b1, &mut leaves.first, p.a), rel);
-        let node = &b2.nodes[p.b as usize].ssv;
+        let node = b2.inner_ssv(p.b);
         Ssv::bounds_against_posed([node], fixed, rel, true, want, cutoff, slack)
     } else {
         let fixed = leaves
             .posed
             .get(p.b, true, volume(b2, &mut leaves.second, p.b), rel);
-        let node = &b1.nodes[p.a as usize].ssv;
+        let node = b1.inner_ssv(p.a);
         Ssv::bounds_against_posed([node], fixed, rel, false, want, cutoff, slack)
     };
     (NodePair { bound, ..*p }, axis)
@@ -235,12 +235,12 @@ mod tests {
         };
         let volume = |r: NodeRef| CompactSsv {
             axes: [Vec3::x(), Vec3::y()],
-            origin: Vec3::new(f64::from(r), 1.0, -2.0),
+            origin: Vec3::new(f64::from(r.raw()), 1.0, -2.0),
             lengths: [1.0, 2.0],
             radius: 0.25,
         };
         let mut posed = PosedVolumes::default();
-        let s = POSED_SLOTS as NodeRef;
+        let s = POSED_SLOTS as i32;
         let asks = [
             (0, true),
             (0, false),
@@ -256,6 +256,7 @@ mod tests {
             (0, false),
         ];
         for (r, second) in asks {
+            let r = NodeRef::from_raw(r);
             let v = volume(r);
             let got = *posed.get(r, second, &v, &rel);
             assert_eq!(got, v.posed(&rel, !second), "node {r}, second {second}");

@@ -5,7 +5,6 @@
 use super::bounds::{bound_one, expand, leaf_children, Child, LeafChildren};
 use super::{Best, ClosestSearch};
 use crate::bounding_volume::Want;
-use crate::bvh::leaf_triangle;
 use crate::geometry::{tri_distance_below, Near};
 use crate::math::Vec3;
 use crate::query::traversal::NodePair;
@@ -132,7 +131,7 @@ impl ClosestSearch<'_> {
     /// Tests the triangles of a pair of leaves, and leaves the pair in the front.
     #[inline]
     pub(super) fn leaf_pair(&mut self, p: &NodePair) {
-        let (d, gap) = self.test_triangles(leaf_triangle(p.a), leaf_triangle(p.b));
+        let (d, gap) = self.test_triangles(p.a.triangle(), p.b.triangle());
         // The pair's own distance, which the closest points' axis shows: the tightest bound the
         // front can keep for it (the axis made a unit vector only for a front).
         if self.front.is_some() {
