@@ -142,7 +142,7 @@ pub(crate) struct Front {
 
 impl Front {
     /// A front of more than this many times its size after the last search from the root is
-    /// dropped (measured on the tumbling tori of BENCHMARKS.md).
+    /// dropped: past it, the fine nodes left where the models were near cost more than they save.
     const GROWTH: f64 = 1.25;
     /// The relative pose may have moved by at most this much (each rotation entry, and each
     /// translation coordinate in units of the models' root volume sizes) for the front to be used.

@@ -7,9 +7,8 @@
 //! which order as the bounds do for non-negative doubles, and a node waits in the bucket of the
 //! highest bit in which its key differs from the last key popped. A push is one append; a pop takes
 //! from bucket 0 (keys equal to the last) or, when that is empty, spreads the lowest non-empty
-//! bucket over the lower ones, which each node undergoes at most 63 times. Against the binary heap
-//! it replaced (whose sifting comparisons were unpredictable branches) the spheres of BENCHMARKS.md
-//! take about a tenth less time per query.
+//! bucket over the lower ones, which each node undergoes at most 63 times. It replaced a binary
+//! heap, whose sifting comparisons were unpredictable branches.
 
 use super::traversal::NodePair;
 use crate::bvh::NodeRef;

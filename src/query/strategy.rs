@@ -38,7 +38,7 @@ pub struct Search {
     /// result), so that under coherent motion the first answer is already nearly the final one.
     /// A priority-directed distance query also starts from the last query's BVTT front (kept in
     /// the result too) when the models moved little since, which skips most of its bound tests
-    /// (nearly two thirds on the tumbling tori of BENCHMARKS.md).
+    /// (BENCHMARKS.md, section 4).
     pub triangle_cache: bool,
 }
 
@@ -56,8 +56,8 @@ impl Search {
     /// The default queue size. Large enough that on every benchmark workload but the nested shells
     /// the queue never fills, so the search does the minimal work; small enough that where the
     /// bounds cannot tell pairs apart (nested shells: about a million pairs with bound 0) the queue
-    /// stays in cache and the overflow, searched depth-first, finds a good answer soon. Measured in
-    /// BENCHMARKS.md: unbounded, the shells took 3.7 times as long (28 times with rel_err 0.1).
+    /// stays in cache and the overflow, searched depth-first, finds a good answer soon (BENCHMARKS.md,
+    /// sections 5 and 8).
     pub const DEFAULT_QSIZE: usize = 1024;
 
     /// PQP 1.3's own search for its queue size `qsize`: depth-first for 1 or 2, else a priority

@@ -15,8 +15,7 @@ pub(crate) struct LeafVolumes {
     first: LeafCache<CompactSsv>,
     second: LeafCache<CompactSsv>,
     /// Volumes recently posed by [`expand`]: a node stays the fixed side of several expansions
-    /// close together (a fifth of the nested shells' expansions fix the node fixed by the one
-    /// before, a third one fixed in the last few).
+    /// close together, so a posed volume is often asked for again soon.
     posed: PosedVolumes,
 }
 
@@ -43,7 +42,7 @@ impl Default for PosedVolumes {
 impl PosedVolumes {
     /// `v`, the volume of node `r` of model 2 (`second`) or 1, posed by `rel` (by its inverse for
     /// model 1), unless its slot holds it. (The volume is looked up whether or not it is needed:
-    /// measured cheaper than looking it up only when it is.)
+    /// a branch on the need costs more than the lookup.)
     #[inline(always)]
     fn get(&mut self, r: NodeRef, second: bool, v: &CompactSsv, rel: &RelPose) -> &Ssv {
         // Nonzero, and distinct for every node of either model.

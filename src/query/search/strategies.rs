@@ -19,13 +19,12 @@ impl ClosestSearch<'_> {
     /// cutoff does not fall much before the pair's turn (a lower bound that is not the exact one
     /// then prunes less). So the overflow of a priority-directed search, whose cutoff is nearly
     /// final by then, and a tolerance query, whose cutoff is fixed, ask for them; a distance
-    /// query's depth-first search from the root does not (on the spheres of BENCHMARKS.md, loose
-    /// bounds there took 1.6 times the bound tests). On the nested shells, where most pairs are
-    /// below the cutoff, they take about a quarter off a query's time. With them, a leaf pair
-    /// under a leaf and an inner node goes straight to its triangles (see [`visit_unordered`]):
-    /// bounding it would cost about as much as a triangle test that the planes settle, and would
-    /// seldom prune where the cutoff stays put (shells 7% fewer instructions for nodes of two
-    /// leaves, 2% more for nodes of a leaf and an inner node).
+    /// query's depth-first search from the root does not: its cutoff falls as it goes, and
+    /// siblings in the wrong order then cost many more bound tests. Loose bounds pay where most
+    /// pairs are below the cutoff (the nested shells). With them, a leaf pair under a leaf and an
+    /// inner node goes straight to its triangles (see [`visit_unordered`]): bounding it would cost
+    /// about as much as a triangle test that the planes settle, and would seldom prune where the
+    /// cutoff stays put. (Figures: BENCHMARKS.md, section 8.)
     ///
     /// [`visit_unordered`]: ClosestSearch::visit_unordered
     pub(super) fn depth_first(

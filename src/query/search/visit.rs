@@ -28,8 +28,8 @@ impl ClosestSearch<'_> {
             );
         }
         let moved = &self.posed.1;
-        // A front keeps the pair's bound for the next query: the exact distance is worth its cost
-        // there (measured on the tumbling tori).
+        // A front keeps the pair's bound for the next query: the exact distance prunes more of
+        // the next query than its cost here.
         let cutoff = if self.front.is_some() {
             f64::INFINITY
         } else {
