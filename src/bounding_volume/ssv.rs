@@ -271,24 +271,11 @@ impl Ssv {
     ///
     /// `slack`: the rounding allowance, at least [`Ssv::slack_for`] of the volumes' scales (a
     /// search takes one for all the pairs of its two models).
+    ///
+    /// `b` comes already posed: `moved` is `b.posed(rel, inverse)` (a search keeps recently posed
+    /// volumes and poses each once).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
-        a: [&CompactSsv; N],
-        b: &CompactSsv,
-        rel: &RelPose,
-        inverse: bool,
-        want: Want,
-        cutoff: f64,
-        slack: f64,
-    ) -> [(f64, Vec3); N] {
-        let moved = b.posed(rel, inverse);
-        Ssv::bounds_against_posed(a, &moved, rel, inverse, want, cutoff, slack)
-    }
-
-    /// As [`bounds_against`](Ssv::bounds_against), with `b` already posed: `moved` is
-    /// `b.posed(rel, inverse)` (a search keeps recently posed volumes and poses each once).
-    #[inline(always)]
-    pub(crate) fn bounds_against_posed<const N: usize>(
         a: [&CompactSsv; N],
         moved: &Ssv,
         rel: &RelPose,
@@ -397,7 +384,8 @@ impl DistanceVolume for Ssv {
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
         let (ca, cb, slack) = (a.compact(), b.compact(), Ssv::slack(a, b, rel));
-        Ssv::bounds_against([&ca], &cb, rel, false, Want::EXACT, cutoff, slack)[0].0
+        let moved = cb.posed(rel, false);
+        Ssv::bounds_against([&ca], &moved, rel, false, Want::EXACT, cutoff, slack)[0].0
     }
 }
 
@@ -558,10 +546,11 @@ mod tests {
             // b posed by rel against a, then a posed by rel's inverse against b.
             let (ca, cb) = (a.compact(), b.compact());
             let slack = Ssv::slack(&a, &b, &rel);
+            let (b_moved, a_moved) = (cb.posed(&rel, false), ca.posed(&rel, true));
             let [(bound, axis)] =
-                Ssv::bounds_against([&ca], &cb, &rel, false, Want::AXES, cutoff, slack);
+                Ssv::bounds_against([&ca], &b_moved, &rel, false, Want::AXES, cutoff, slack);
             let [(bound_inv, axis_inv)] =
-                Ssv::bounds_against([&cb], &ca, &rel, true, Want::AXES, cutoff, slack);
+                Ssv::bounds_against([&cb], &a_moved, &rel, true, Want::AXES, cutoff, slack);
             for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
                 cases += 1;
                 if axis == Vec3::zeros() {

@@ -140,6 +140,18 @@ pub(crate) struct Front {
     base: usize,
 }
 
+/// The query a front is asked about: the two models with their hierarchies, the relative pose of
+/// model 2 in model 1's frame, and how the query searches.
+#[derive(Clone, Copy)]
+pub(crate) struct FrontQuery<'a> {
+    pub m1: &'a Model,
+    pub m2: &'a Model,
+    pub b1: &'a Bvh,
+    pub b2: &'a Bvh,
+    pub rel: &'a RelPose,
+    pub search: &'a Search,
+}
+
 impl Front {
     /// A front of more than this many times its size after the last search from the root is
     /// dropped: past it, the fine nodes left where the models were near cost more than they save.
@@ -155,22 +167,14 @@ impl Front {
         v
     }
 
-    /// Whether the query at `rel` should record its front for the next: the last query was on the
+    /// Whether the query `q` should record its front for the next: the last query was on the
     /// same models, from a pose near this one, and the search is one that uses a front.
-    pub fn worth_recording(
-        &self,
-        m1: &Model,
-        m2: &Model,
-        b1: &Bvh,
-        b2: &Bvh,
-        rel: &RelPose,
-        search: &Search,
-    ) -> bool {
+    pub fn worth_recording(&self, q: &FrontQuery) -> bool {
         self.last.as_ref().is_some_and(|(u1, u2, prev)| {
-            Self::uses_front(search)
-                && *u1 == m1.uid()
-                && *u2 == m2.uid()
-                && Self::change(prev, rel, b1, b2).is_some()
+            Self::uses_front(q.search)
+                && *u1 == q.m1.uid()
+                && *u2 == q.m2.uid()
+                && Self::change(prev, q.rel, q.b1, q.b2).is_some()
         })
     }
 
@@ -188,27 +192,19 @@ impl Front {
         (dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale).then_some((dr, dt))
     }
 
-    /// The front to start the query at `rel` from, if it suits it, with how much its bounds may
+    /// The front to start the query `q` from, if it suits it, with how much its bounds may
     /// have shrunk since they were computed.
-    pub fn start(
-        &self,
-        m1: &Model,
-        m2: &Model,
-        b1: &Bvh,
-        b2: &Bvh,
-        rel: &RelPose,
-        search: &Search,
-    ) -> Option<(&[FrontPair], Motion)> {
+    pub fn start(&self, q: &FrontQuery) -> Option<(&[FrontPair], Motion)> {
         let prev = self.rel.as_ref()?;
-        let same = Self::uses_front(search)
-            && self.uid1 == m1.uid()
-            && self.uid2 == m2.uid()
+        let same = Self::uses_front(q.search)
+            && self.uid1 == q.m1.uid()
+            && self.uid2 == q.m2.uid()
             && !self.nodes.is_empty();
         if !same {
             return None;
         }
-        let (dr, dt) = Self::change(prev, rel, b1, b2)?;
-        let slack_scale = rel.trans.norm() + prev.trans.norm() + b1.reach() + b2.reach();
+        let (dr, dt) = Self::change(prev, q.rel, q.b1, q.b2)?;
+        let slack_scale = q.rel.trans.norm() + prev.trans.norm() + q.b1.reach() + q.b2.reach();
         let motion = Motion {
             dr,
             dt,
@@ -216,7 +212,7 @@ impl Front {
             whole: 0.0,
             slack_scale,
         };
-        let whole = motion.bound(&Vec3::zeros(), b2.reach());
+        let whole = motion.bound(&Vec3::zeros(), q.b2.reach());
         Some((&self.nodes[..], Motion { whole, ..motion }))
     }
 

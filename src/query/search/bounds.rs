@@ -69,8 +69,9 @@ impl ClosestSearch<'_> {
             axes: self.front.is_some(),
             exact: true,
         };
+        let moved = vb.posed(&self.rel, false);
         let [(bound, axis)] =
-            Ssv::bounds_against([va], vb, &self.rel, false, want, cutoff, self.slack);
+            Ssv::bounds_against([va], &moved, &self.rel, false, want, cutoff, self.slack);
         (NodePair { a, b, bound }, axis)
     }
 }
@@ -126,7 +127,7 @@ pub(crate) fn expand(
             .get(b, true, volume(b2, &mut leaves.second, b), rel);
         let [c0, c1] = b1.children(a);
         let children = volumes(b1, &mut leaves.first, [c0, c1]);
-        let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, false, want, cutoff, slack);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, false, want, cutoff, slack);
         [pair(c0, b, d0), pair(c1, b, d1)]
     } else {
         let fixed = leaves
@@ -134,7 +135,7 @@ pub(crate) fn expand(
             .get(a, false, volume(b1, &mut leaves.first, a), rel);
         let [c0, c1] = b2.children(b);
         let children = volumes(b2, &mut leaves.second, [c0, c1]);
-        let [d0, d1] = Ssv::bounds_against_posed(children, fixed, rel, true, want, cutoff, slack);
+        let [d0, d1] = Ssv::bounds_against(children, fixed, rel, true, want, cutoff, slack);
         [pair(a, c0, d0), pair(a, c1, d1)]
     })
 }
@@ -189,34 +190,28 @@ pub(super) fn leaf_children(b1: &Bvh, b2: &Bvh, p: &NodePair) -> LeafChildren {
     }
 }
 
-/// The bound of the BVTT node `p`, a leaf against an inner node, as [`expand`] gives its
-/// children's (the leaf posed, through the same table).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn bound_one(
-    b1: &Bvh,
-    b2: &Bvh,
-    rel: &RelPose,
-    slack: f64,
-    p: &NodePair,
-    cutoff: f64,
-    want: Want,
-    leaves: &mut LeafVolumes,
-) -> Child {
-    let [(bound, axis)] = if p.a.is_leaf() {
-        let fixed = leaves
-            .posed
-            .get(p.a, false, volume(b1, &mut leaves.first, p.a), rel);
-        let node = b2.inner_ssv(p.b);
-        Ssv::bounds_against_posed([node], fixed, rel, true, want, cutoff, slack)
-    } else {
-        let fixed = leaves
-            .posed
-            .get(p.b, true, volume(b2, &mut leaves.second, p.b), rel);
-        let node = b1.inner_ssv(p.a);
-        Ssv::bounds_against_posed([node], fixed, rel, false, want, cutoff, slack)
-    };
-    (NodePair { bound, ..*p }, axis)
+impl ClosestSearch<'_> {
+    /// The bound of the BVTT node `p`, a leaf against an inner node, as [`expand`] gives its
+    /// children's (the leaf posed, through the same table).
+    #[inline(always)]
+    pub(super) fn bound_one(&mut self, p: &NodePair, cutoff: f64, want: Want) -> Child {
+        let (b1, b2, rel, slack) = (self.b1, self.b2, &self.rel, self.slack);
+        let leaves = &mut *self.leaves;
+        let [(bound, axis)] = if p.a.is_leaf() {
+            let fixed = leaves
+                .posed
+                .get(p.a, false, volume(b1, &mut leaves.first, p.a), rel);
+            let node = b2.inner_ssv(p.b);
+            Ssv::bounds_against([node], fixed, rel, true, want, cutoff, slack)
+        } else {
+            let fixed = leaves
+                .posed
+                .get(p.b, true, volume(b2, &mut leaves.second, p.b), rel);
+            let node = b1.inner_ssv(p.a);
+            Ssv::bounds_against([node], fixed, rel, false, want, cutoff, slack)
+        };
+        (NodePair { bound, ..*p }, axis)
+    }
 }
 
 #[cfg(test)]

@@ -110,22 +110,12 @@ impl<'a> ClosestSearch<'a> {
     /// `stop(best)` ends the search early. `fixed_cutoff`: the cutoff does not fall before `stop`
     /// ends the search (a tolerance query's), so that a depth-first search loses nothing by asking
     /// for loose bounds (see [`depth_first`](ClosestSearch::depth_first)).
+    ///
+    /// With `front`, it starts from the BVTT nodes of the front (a cut of the BVTT: every triangle
+    /// pair lies below one of them) instead of the root, when the search is priority-directed;
+    /// other strategies start from the root. A front node's bound held before the `motion`; less
+    /// the motion of the node's points, it bounds the triangles below it now.
     pub fn run(
-        &mut self,
-        search: &Search,
-        auto: Strategy,
-        cutoff: impl Fn(f64) -> f64 + Copy,
-        stop: impl Fn(f64) -> bool + Copy,
-        fixed_cutoff: bool,
-    ) {
-        self.run_from(search, auto, cutoff, stop, fixed_cutoff, None)
-    }
-
-    /// As [`run`](ClosestSearch::run), starting from the BVTT nodes of `front` (a cut of the BVTT:
-    /// every triangle pair lies below one of them) instead of the root, when given and the search
-    /// is priority-directed; other strategies start from the root. A front node's bound held before
-    /// the `motion`; less the motion of the node's points, it bounds the triangles below it now.
-    pub fn run_from(
         &mut self,
         search: &Search,
         auto: Strategy,

@@ -2,7 +2,7 @@
 //! pair yet kept, the pair left in the front), an inner pair is expanded into its children with
 //! their bounds (`bounds.rs`).
 
-use super::bounds::{bound_one, expand, leaf_children, Child, LeafChildren};
+use super::bounds::{expand, leaf_children, Child, LeafChildren};
 use super::{Best, ClosestSearch};
 use crate::bounding_volume::Want;
 use crate::geometry::{tri_distance_below, Near};
@@ -100,8 +100,7 @@ impl ClosestSearch<'_> {
                     self.leaf_pair(&x);
                     self.stats.bv_tests += 1;
                     let want = Want { axes: false, exact };
-                    let (rel, slack) = (&self.rel, self.slack);
-                    let c = bound_one(self.b1, self.b2, rel, slack, &y, cutoff, want, self.leaves);
+                    let c = self.bound_one(&y, cutoff, want);
                     let none = NodePair {
                         bound: f64::INFINITY,
                         ..y
