@@ -14,10 +14,10 @@ use std::collections::VecDeque;
 impl ClosestSearch<'_> {
     /// Depth-first, nearer child first. Returns whether `stop` ended the search.
     ///
-    /// With `loose`, it asks for loose bounds (see [`Want`]): a pair below the cutoff is expanded
-    /// whatever its bound, and only the order of two siblings suffers a little, as long as the
-    /// cutoff does not fall much before the pair's turn (a lower bound that is not the exact one
-    /// then prunes less). So the overflow of a priority-directed search, whose cutoff is nearly
+    /// With `loose`, it asks for loose bounds (see [`Want`](crate::bounding_volume::Want)): a pair
+    /// below the cutoff is expanded whatever its bound, and only the order of two siblings suffers
+    /// a little, as long as the cutoff does not fall much before the pair's turn (a lower bound
+    /// that is not the exact one then prunes less). So the overflow of a priority-directed search, whose cutoff is nearly
     /// final by then, and a tolerance query, whose cutoff is fixed, ask for them; a distance
     /// query's depth-first search from the root does not: its cutoff falls as it goes, and
     /// siblings in the wrong order then cost many more bound tests. Loose bounds pay where most
