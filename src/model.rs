@@ -1,41 +1,12 @@
 //! A triangle model and PQP's build protocol: begin, add triangles, end.
 
-use crate::bvh::Bvh;
+pub use crate::bvh::{CollisionVolume, VolumeKind};
+
+use crate::bvh::{try_copy, Bvh};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
 use crate::math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// The swept sphere volume a model's hierarchy is built with, for the distance and tolerance
-/// queries (and for collision with [`CollisionVolume::Ssv`]). Chosen before [`Model::end`]; the
-/// default, [`VolumeKind::Rss`], is PQP's.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum VolumeKind {
-    /// Rectangle swept spheres everywhere (PQP's choice): the tightest fit, the dearest test.
-    #[default]
-    Rss,
-    /// Point swept spheres (spheres) everywhere: the cheapest test, the loosest fit.
-    Pss,
-    /// Line swept spheres (capsules) everywhere.
-    Lss,
-    /// Each node takes the kind whose fitted volume is smallest: spheres where the triangles are
-    /// round, capsules where they are long, rectangles where they are flat. Measured fastest (see
-    /// `examples/volume_family.rs`); building costs about twice as much, as it fits all three.
-    Hybrid,
-}
-
-/// The volume the collision query tests a model's nodes with. Chosen before [`Model::end`]; the
-/// default, [`CollisionVolume::Obb`], is PQP's. Collision runs on swept sphere volumes only when
-/// both models ask for it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum CollisionVolume {
-    /// Oriented bounding boxes (PQP's choice).
-    #[default]
-    Obb,
-    /// The model's swept sphere volumes (see [`VolumeKind`]): two may overlap when their distance
-    /// bound is 0.
-    Ssv,
-}
 
 /// Where a model is in PQP's build protocol ([`Model::build_state`]); PQP 1.3's `build_state`,
 /// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
@@ -334,13 +305,4 @@ impl Model {
     pub(crate) fn uid(&self) -> u64 {
         self.uid
     }
-}
-
-/// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
-pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
-    let mut out = Vec::new();
-    out.try_reserve_exact(v.len())
-        .map_err(|_| Error::ModelOutOfMemory)?;
-    out.extend_from_slice(v);
-    Ok(out)
 }

@@ -1,7 +1,8 @@
 //! Line swept sphere fit: a segment along the axis of largest spread, swept by the smallest sphere
 //! that reaches every point.
 
-use super::ssv::{allowance, ball_centre, Ssv};
+use super::fit_support::{allowance, ball_centre};
+use super::ssv::Ssv;
 use crate::math::{Mat3, Vec3};
 
 /// A capsule containing every point (not empty), its segment along `axes.column(0)`, before

@@ -1,17 +1,21 @@
-//! Bounding volumes: oriented boxes (`obb.rs`) and the swept sphere volume family (`ssv.rs`, with
-//! one fit per kind: `pss.rs`, `lss.rs`, `rss.rs`; the exact core distance in `rect_distance.rs`).
+//! Bounding volumes: oriented boxes (`obb.rs`) and the swept sphere volume family (`ssv.rs`, the
+//! type and its distance, over the exact core distance of `rect_distance.rs`; one fit per kind,
+//! `pss.rs`, `lss.rs`, `rss.rs`, over `fit_support.rs`; and `ssv_fit.rs`, which dispatches to
+//! them). Dependencies point one way: `ssv_fit` -> fits -> `ssv`, `fit_support` -> geometry, math.
 //!
 //! A volume is fitted in its model's frame on principal axes chosen by the hierarchy builder, and
 //! tested against a volume of another model through the relative pose of the second model's frame in
 //! the first's. Distance volumes give a lower bound on the distance between anything they contain;
 //! overlap volumes answer whether they may intersect.
 
+mod fit_support;
 mod lss;
 mod obb;
 mod pss;
 mod rect_distance;
 mod rss;
 mod ssv;
+mod ssv_fit;
 
 pub use obb::Obb;
 pub(crate) use rect_distance::rect_distance;

@@ -1,6 +1,7 @@
 //! Point swept sphere fit: one sphere around all the points.
 
-use super::ssv::{ball_centre, Ssv};
+use super::fit_support::ball_centre;
+use super::ssv::Ssv;
 use crate::math::{Mat3, Vec3};
 
 /// A sphere containing every point (not empty), before [`Ssv::cover`]. Its centre is found in the principal frame, where

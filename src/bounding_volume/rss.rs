@@ -1,7 +1,8 @@
 //! Rectangle swept sphere fit: a rectangle on the two axes of largest spread, swept by a sphere
 //! whose radius is half the spread along the third.
 
-use super::ssv::{allowance, Ssv};
+use super::fit_support::allowance;
+use super::ssv::Ssv;
 use crate::math::{Mat3, Vec3};
 
 /// The rectangle swept sphere containing every point (not empty), its rectangle on the first two

@@ -4,8 +4,10 @@
 //! all, a hierarchy node keeps one distance-volume field whatever kind its builder chose, and the
 //! distance between any two is the distance between their cores minus both radii.
 //!
-//! The fits live one per kind (`pss.rs`, `lss.rs`, `rss.rs`); this file holds the type, the
-//! containment test they are measured by, and the distance.
+//! This file holds the type, the containment test the fits are measured by, and the distance. The
+//! fits live one per kind (`pss.rs`, `lss.rs`, `rss.rs`, over the helpers of `fit_support.rs`),
+//! and [`Ssv::fit`], which chooses among them, in `ssv_fit.rs`: they build on this file, never
+//! the other way round.
 
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
@@ -132,53 +134,6 @@ impl Want {
 const BOUND_SLACK: f64 = 64.0 * f64::EPSILON;
 
 impl Ssv {
-    /// The tightest volume of `kind` on the given axes (orthonormal right-handed columns, in
-    /// decreasing order of spread) that contains every point of `points` (not empty): a sphere, a
-    /// segment along the first axis, or a rectangle on the first two, each with the smallest radius
-    /// its fit finds that reaches every point, as [`contains`](BoundingVolume::contains) measures.
-    pub fn fit(kind: SsvKind, axes: &Mat3, points: &[Vec3]) -> Ssv {
-        if points.is_empty() {
-            // The builder never asks for this; an empty volume at the origin rather than NaNs.
-            return Ssv {
-                axes: *axes,
-                origin: Vec3::zeros(),
-                lengths: [0.0; 2],
-                radius: 0.0,
-            };
-        }
-        let local = |i: usize| axes.tr_mul(&points[i]);
-        let z = |i: usize| local(i).z;
-        let (mut zmin, mut zmax) = (z(0), z(0));
-        if kind == SsvKind::Rect {
-            for i in 0..points.len() {
-                zmin = zmin.min(z(i));
-                zmax = zmax.max(z(i));
-            }
-        }
-        Ssv::fit_uncovered(kind, axes, points.len(), local, zmin, zmax).cover(points)
-    }
-
-    /// [`fit`](Ssv::fit) before [`cover`](Ssv::cover), from the `count` (> 0) points in the frame:
-    /// `local(i) == axes.tr_mul(&points[i])`, the same bits. For a rectangle, `zmin` and `zmax`
-    /// are the least and greatest `local(i).z`. The builder computes the points in the frame once
-    /// for all the volumes it fits on it.
-    #[inline]
-    pub(crate) fn fit_uncovered(
-        kind: SsvKind,
-        axes: &Mat3,
-        count: usize,
-        local: impl Fn(usize) -> Vec3 + Copy,
-        zmin: f64,
-        zmax: f64,
-    ) -> Ssv {
-        debug_assert!(count > 0);
-        match kind {
-            SsvKind::Point => super::pss::fit(axes, count, local),
-            SsvKind::Line => super::lss::fit(axes, count, local),
-            SsvKind::Rect => super::rss::fit(axes, count, local, zmin, zmax),
-        }
-    }
-
     /// What the core is: a point (both sides 0), a segment along the first axis (second side 0),
     /// or a rectangle.
     #[inline(always)]
@@ -251,7 +206,7 @@ impl Ssv {
     /// along which the cores are at least the returned value apart (see `rect_distance`), in the
     /// frame of `a`'s axes; zero when there is none (and for pairs with a point or two segments,
     /// which the default volumes never meet). Not inlined: one copy of the kernel serves every
-    /// caller (measured faster than inlined copies).
+    /// caller and stays in the instruction cache.
     #[inline(never)]
     fn cores_distance_here(
         a: &Ssv,
@@ -277,7 +232,7 @@ impl Ssv {
                 // there is the cross product of its first two axes there (a rotation keeps cross
                 // products).
                 // Through the transpose: products by columns, which the compiler vectorizes,
-                // rather than dot products (about 1% fewer instructions per query).
+                // rather than dot products.
                 let at = a.axes.transpose();
                 let (u, v) = (at * b.axes[0], at * b.axes[1]);
                 let r = frame_from(&u, &v);
@@ -316,24 +271,11 @@ impl Ssv {
     ///
     /// `slack`: the rounding allowance, at least [`Ssv::slack_for`] of the volumes' scales (a
     /// search takes one for all the pairs of its two models).
+    ///
+    /// `b` comes already posed: `moved` is `b.posed(rel, inverse)` (a search keeps recently posed
+    /// volumes and poses each once).
     #[inline(always)]
     pub(crate) fn bounds_against<const N: usize>(
-        a: [&CompactSsv; N],
-        b: &CompactSsv,
-        rel: &RelPose,
-        inverse: bool,
-        want: Want,
-        cutoff: f64,
-        slack: f64,
-    ) -> [(f64, Vec3); N] {
-        let moved = b.posed(rel, inverse);
-        Ssv::bounds_against_posed(a, &moved, rel, inverse, want, cutoff, slack)
-    }
-
-    /// As [`bounds_against`](Ssv::bounds_against), with `b` already posed: `moved` is
-    /// `b.posed(rel, inverse)` (a search keeps recently posed volumes and poses each once).
-    #[inline(always)]
-    pub(crate) fn bounds_against_posed<const N: usize>(
         a: [&CompactSsv; N],
         moved: &Ssv,
         rel: &RelPose,
@@ -342,7 +284,7 @@ impl Ssv {
         cutoff: f64,
         slack: f64,
     ) -> [(f64, Vec3); N] {
-        // A plain loop: `array::map` with this body is not inlined, and costs 8% of a query.
+        // A plain loop: `array::map` with this body is not inlined.
         let mut out = [(0.0, Vec3::zeros()); N];
         for (out, a) in out.iter_mut().zip(a) {
             // Cores within both radii make the bound 0 however close they are: the first pair of
@@ -351,7 +293,7 @@ impl Ssv {
             let (bound, axis) = Ssv::bound_from(radii, slack, cutoff, |core_cutoff| {
                 // In the fixed volume's frame, so that the kernel looks first at the corners of
                 // `a` (a child of the node split, the smaller as a rule), whose box in that frame
-                // is the tighter: 4% fewer instructions on the nested shells, 1.5% elsewhere.
+                // is the tighter, so that it stops sooner.
                 Ssv::cores_distance_here(moved, a, radii + slack, core_cutoff, want.exact)
             });
             // From the frame of b's axes into a's model frame (from a to b), then (inverse) into
@@ -398,13 +340,6 @@ fn outside(x: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// How far a point at height `dz` above the rectangle's plane may lie beside the rectangle, in the
-/// plane, and stay within `r` of it: `sqrt(r^2 - dz^2)`, factored to keep precision near the caps.
-#[inline(always)]
-pub(super) fn allowance(r: f64, dz: f64) -> f64 {
-    ((r - dz) * (r + dz)).max(0.0).sqrt()
-}
-
 impl BoundingVolume for Ssv {
     fn contains(&self, p: &Vec3, eps: f64) -> bool {
         self.core_distance(p) <= self.radius + eps
@@ -449,7 +384,8 @@ impl DistanceVolume for Ssv {
     #[inline]
     fn distance_below(a: &Self, b: &Self, rel: &RelPose, cutoff: f64) -> f64 {
         let (ca, cb, slack) = (a.compact(), b.compact(), Ssv::slack(a, b, rel));
-        Ssv::bounds_against([&ca], &cb, rel, false, Want::EXACT, cutoff, slack)[0].0
+        let moved = cb.posed(rel, false);
+        Ssv::bounds_against([&ca], &moved, rel, false, Want::EXACT, cutoff, slack)[0].0
     }
 }
 
@@ -559,45 +495,6 @@ impl OverlapVolume for Ssv {
     }
 }
 
-/// The centre of a small ball around `n` points given by `at(i)`, in whatever coordinates `at`
-/// returns: the centre of their bounding box, then a few steps of Badoiu and Clarkson's iteration
-/// (move towards the farthest point by a shrinking fraction), keeping the centre whose farthest
-/// point is nearest. The box centre is within sqrt(3)/2 of optimal; the steps usually shave a few
-/// per cent off round and irregular sets. Returns the centre and the squared radius it needs.
-pub(super) fn ball_centre(n: usize, at: impl Fn(usize) -> Vec3) -> (Vec3, f64) {
-    let first = at(0);
-    let (mut lo, mut hi) = (first, first);
-    for i in 1..n {
-        let q = at(i);
-        lo = lo.inf(&q);
-        hi = hi.sup(&q);
-    }
-    // Halve before adding: no overflow whatever the magnitudes.
-    let mut c = lo * 0.5 + hi * 0.5;
-    let farthest = |c: &Vec3| {
-        let mut best = (0usize, -1.0f64);
-        for i in 0..n {
-            let d = (at(i) - c).norm_squared();
-            if d > best.1 {
-                best = (i, d);
-            }
-        }
-        best
-    };
-    let (mut far, mut r2) = farthest(&c);
-    let mut best = (c, r2);
-    // The box centre is already close, so start with small steps (1/4, 1/5, ...) rather than the
-    // iteration's 1/2: the point is to settle between the few farthest points.
-    for k in 4..12 {
-        c += (at(far) - c) / k as f64;
-        (far, r2) = farthest(&c);
-        if r2 < best.1 {
-            best = (c, r2);
-        }
-    }
-    best
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -649,10 +546,11 @@ mod tests {
             // b posed by rel against a, then a posed by rel's inverse against b.
             let (ca, cb) = (a.compact(), b.compact());
             let slack = Ssv::slack(&a, &b, &rel);
+            let (b_moved, a_moved) = (cb.posed(&rel, false), ca.posed(&rel, true));
             let [(bound, axis)] =
-                Ssv::bounds_against([&ca], &cb, &rel, false, Want::AXES, cutoff, slack);
+                Ssv::bounds_against([&ca], &b_moved, &rel, false, Want::AXES, cutoff, slack);
             let [(bound_inv, axis_inv)] =
-                Ssv::bounds_against([&cb], &ca, &rel, true, Want::AXES, cutoff, slack);
+                Ssv::bounds_against([&cb], &a_moved, &rel, true, Want::AXES, cutoff, slack);
             for (bound, axis) in [(bound, axis), (bound_inv, axis_inv)] {
                 cases += 1;
                 if axis == Vec3::zeros() {

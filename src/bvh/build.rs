@@ -1,14 +1,11 @@
 //! Top-down build, as the SSV paper describes it: principal axes from the covariance of the node's
 //! vertices, split across the axis of largest spread at the mean of the triangle centroids.
 
-#[cfg(test)]
-use super::NodeRef;
-use super::{Bvh, Node};
+use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::{Tri, RESCALE_LO};
 use crate::math::{frame_from, Mat3, Vec3};
-use crate::model::{CollisionVolume, VolumeKind};
 use nalgebra::SymmetricEigen;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
@@ -88,12 +85,12 @@ impl Bvh {
             for (k, (clo, chi)) in [(lo, lo + mid), (lo + mid, hi)].into_iter().enumerate() {
                 node.children[k] = if chi - clo == 1 {
                     // Leaves point at the triangle's slot in leaf order.
-                    -(clo as i32) - 1
+                    NodeRef::leaf(clo)
                 } else {
                     let c = nodes.len();
                     nodes.push(placeholder());
                     work.push((c, clo, chi, depth + 1));
-                    c as i32
+                    NodeRef::inner(c)
                 };
             }
             nodes[ni] = node;
@@ -465,15 +462,17 @@ mod tests {
     fn check_containment(bvh: &Bvh) {
         // Every node's volumes contain every vertex of every triangle below it.
         fn rec(b: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
-            if r < 0 {
-                out.push(super::super::leaf_triangle(r));
+            if r.is_leaf() {
+                out.push(r.triangle());
             } else {
-                let [c0, c1] = b.nodes[r as usize].children;
+                let [c0, c1] = b.children(r);
                 rec(b, c0, out);
                 rec(b, c1, out);
             }
         }
-        let refs = (0..bvh.nodes.len() as i32).chain((0..bvh.num_tris() as i32).map(|t| -t - 1));
+        let refs = (0..bvh.nodes.len())
+            .map(NodeRef::inner)
+            .chain((0..bvh.num_tris()).map(NodeRef::leaf));
         for r in refs {
             let mut tris = Vec::new();
             rec(bvh, r, &mut tris);

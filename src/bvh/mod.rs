@@ -3,9 +3,9 @@
 //! Only inner nodes are stored, in one array, the root first. Each carries one frame (the principal
 //! axes both its volumes were fitted on; the third axis is stored as the cross product of the first
 //! two, recomputed on use exactly as the build computed it), a swept sphere volume (a PSS, LSS or
-//! RSS, as the model's [`VolumeKind`](crate::model::VolumeKind) chooses) for the distance and
-//! tolerance queries, and for collision when the model asks for it, and an overlap volume (OBB) for
-//! collision, both in model coordinates (a test composes the relative pose with the axes, so no
+//! RSS, as the model's [`VolumeKind`] chooses) for the distance and tolerance queries, and for
+//! collision when the model asks for it, and an overlap volume (OBB) for collision, both in model
+//! coordinates (a test composes the relative pose with the axes, so no
 //! per-node frame chain is needed).
 //!
 //! A leaf is one triangle and stores no volume: its volumes are computed on use from the triangle
@@ -15,20 +15,118 @@
 
 mod build;
 mod pqp_view;
+mod volume_choice;
 
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
+pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::RESCALE_HI;
 use crate::math::{frame_from, Mat3, RelPose, Vec3};
-use crate::model::{try_copy, CollisionVolume};
 
-/// A reference to a node of the hierarchy: `>= 0` an inner node (its index in `Bvh::nodes`), `< 0`
-/// a leaf, holding triangle `-r - 1`.
-pub(crate) type NodeRef = i32;
+/// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
+/// hold in their stacks and queues; they ask the [`Bvh`] for its volumes, its children and its
+/// triangle, and never read the node array themselves.
+///
+/// Four bytes, as the integer it wraps (`>= 0`: an inner node's index, `< 0`: the leaf of triangle
+/// `-r - 1`): copied, compared and stored as cheaply, and every method inlines to the integer test
+/// or arithmetic.
+///
+/// A descent to every triangle below a node (the shape of every query's traversal; this runs as
+/// the unit test `bvh::tests::descent_example`):
+///
+/// ```ignore
+/// fn triangles_below(bvh: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
+///     match r.kind() {
+///         NodeKind::Leaf(t) => out.push(t),
+///         NodeKind::Inner(_) => {
+///             for c in bvh.children(r) {
+///                 triangles_below(bvh, c, out);
+///             }
+///         }
+///     }
+/// }
+/// let mut all = Vec::new();
+/// triangles_below(&bvh, bvh.root(), &mut all);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[repr(transparent)]
+pub(crate) struct NodeRef(i32);
+
+impl std::fmt::Display for NodeRef {
+    /// The integer it wraps (`>= 0` inner, `< 0` leaf).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// What a [`NodeRef`] designates ([`NodeRef::kind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum NodeKind {
+    /// A leaf: the triangle's slot in leaf order (for [`Bvh::tri`]).
+    Leaf(usize),
+    /// An inner node: its index among the inner nodes (the root is 0).
+    Inner(usize),
+}
+
+impl NodeRef {
+    /// The inner node of index `i`.
+    #[inline(always)]
+    pub(crate) const fn inner(i: usize) -> NodeRef {
+        NodeRef(i as i32)
+    }
+
+    /// The leaf of triangle `t` (in leaf order).
+    #[inline(always)]
+    pub(crate) const fn leaf(t: usize) -> NodeRef {
+        NodeRef(-(t as i32) - 1)
+    }
+
+    /// Whether it is a leaf.
+    #[inline(always)]
+    pub(crate) fn is_leaf(self) -> bool {
+        self.0 < 0
+    }
+
+    /// A leaf with its triangle, or an inner node with its index.
+    #[inline(always)]
+    pub(crate) fn kind(self) -> NodeKind {
+        if self.is_leaf() {
+            NodeKind::Leaf(self.triangle())
+        } else {
+            NodeKind::Inner(self.0 as usize)
+        }
+    }
+
+    /// A leaf's triangle (in leaf order). Only for leaves.
+    #[inline(always)]
+    pub(crate) fn triangle(self) -> usize {
+        debug_assert!(self.is_leaf());
+        (-(self.0 as i64) - 1) as usize
+    }
+
+    /// The integer it wraps, for keys of caches (distinct for distinct nodes of one hierarchy).
+    #[inline(always)]
+    pub(crate) fn raw(self) -> i32 {
+        self.0
+    }
+
+    /// The handle whose [`raw`](NodeRef::raw) integer is `r` (for tests that make up handles).
+    #[cfg(test)]
+    pub(crate) const fn from_raw(r: i32) -> NodeRef {
+        NodeRef(r)
+    }
+
+    /// The inner node's index, for the array.
+    #[inline(always)]
+    fn index(self) -> usize {
+        debug_assert!(!self.is_leaf());
+        self.0 as usize
+    }
+}
 
 /// One inner node of the hierarchy. Laid out in the order written (`repr(C)`): what a distance query
 /// reads comes first, in the same cache lines.
@@ -37,11 +135,11 @@ pub(crate) type NodeRef = i32;
 pub(crate) struct Node {
     /// The swept sphere volume, on the node's frame: its first two axes (orthonormal), the third
     /// being their cross product (the box is on the same frame).
-    pub ssv: CompactSsv,
+    ssv: CompactSsv,
     /// The swept sphere volume's size, which the descent rule compares at every step.
     ssv_size: f64,
     /// The two children.
-    pub children: [NodeRef; 2],
+    children: [NodeRef; 2],
     /// The box's centre and half extents (see [`Obb`]).
     obb_center: Vec3,
     obb_half: Vec3,
@@ -57,7 +155,7 @@ impl Node {
             ssv_size: ssv.size(),
             obb_center: obb.center,
             obb_half: obb.half,
-            children: [0, 0],
+            children: [NodeRef::inner(0); 2],
         }
     }
 
@@ -93,7 +191,8 @@ impl Node {
 /// A built hierarchy: inner nodes, and the triangles with their caller ids in leaf order.
 #[derive(Clone, Debug)]
 pub(crate) struct Bvh {
-    pub nodes: Vec<Node>,
+    /// The inner nodes, the root first; read through [`NodeRef`]s and the accessors below.
+    nodes: Vec<Node>,
     /// The distinct vertices.
     pub verts: Vec<Vec3>,
     /// Each triangle's vertices, by index into `verts`, in leaf order.
@@ -184,36 +283,60 @@ impl Bvh {
     #[inline]
     pub fn root(&self) -> NodeRef {
         if self.nodes.is_empty() {
-            -1
+            NodeRef::leaf(0)
         } else {
-            0
+            NodeRef::inner(0)
         }
+    }
+
+    /// The two children of inner node `r` (not a leaf).
+    #[inline(always)]
+    pub fn children(&self, r: NodeRef) -> [NodeRef; 2] {
+        self.nodes[r.index()].children
+    }
+
+    /// The swept sphere volume of inner node `r` (not a leaf), where it is stored.
+    #[inline(always)]
+    pub fn inner_ssv(&self, r: NodeRef) -> &CompactSsv {
+        &self.nodes[r.index()].ssv
+    }
+
+    /// The size of inner node `r`'s swept sphere volume (not a leaf; see [`Node::ssv_size`]).
+    #[inline(always)]
+    pub fn inner_ssv_size(&self, r: NodeRef) -> f64 {
+        self.nodes[r.index()].ssv_size()
+    }
+
+    /// Number of inner nodes (one less than the triangles).
+    #[cfg(test)]
+    pub fn num_inner(&self) -> usize {
+        self.nodes.len()
     }
 
     /// The swept sphere volume of node `r`.
     #[inline(always)]
     pub fn ssv(&self, r: NodeRef) -> Ssv {
-        if r >= 0 {
-            self.nodes[r as usize].ssv()
-        } else {
-            Ssv::triangle(&self.tri(leaf_triangle(r)))
+        match r.kind() {
+            NodeKind::Inner(i) => self.nodes[i].ssv(),
+            NodeKind::Leaf(t) => Ssv::triangle(&self.tri(t)),
         }
     }
 
     /// The swept sphere volume of leaf `r`, computed from its triangle, as [`CompactSsv`].
     #[inline(always)]
     pub fn leaf_compact_ssv(&self, r: NodeRef) -> CompactSsv {
-        Ssv::triangle(&self.tri(leaf_triangle(r))).compact()
+        Ssv::triangle(&self.tri(r.triangle())).compact()
     }
 
     /// The box of node `r`.
     #[inline(always)]
     pub fn obb(&self, r: NodeRef) -> Obb {
-        if r >= 0 {
-            self.nodes[r as usize].obb()
-        } else {
-            let t = self.tri(leaf_triangle(r));
-            Obb::fit(&Ssv::triangle(&t).axes, &t)
+        match r.kind() {
+            NodeKind::Inner(i) => self.nodes[i].obb(),
+            NodeKind::Leaf(t) => {
+                let t = self.tri(t);
+                Obb::fit(&Ssv::triangle(&t).axes, &t)
+            }
         }
     }
 
@@ -225,8 +348,8 @@ impl Bvh {
     /// A point `o` of node `r`'s volume and a bound `e` on the distance of its points from `o`.
     #[inline]
     pub fn anchor(&self, r: NodeRef) -> (Vec3, f64) {
-        if r >= 0 {
-            let n = &self.nodes[r as usize];
+        if !r.is_leaf() {
+            let n = &self.nodes[r.index()];
             // The rectangle's centre: every point is within half its diagonal plus the radius,
             // half the size. Rounded up a little: the centre is computed.
             let v = &n.ssv;
@@ -238,7 +361,7 @@ impl Bvh {
             )
         } else {
             // The centroid, and its farthest vertex.
-            let [a, b, c] = self.tri(leaf_triangle(r));
+            let [a, b, c] = self.tri(r.triangle());
             let m = (a + b + c) / 3.0;
             let far2 = (a - m)
                 .norm_squared()
@@ -262,10 +385,10 @@ impl Bvh {
     #[cfg(test)]
     pub fn depth(&self) -> usize {
         fn rec(b: &Bvh, r: NodeRef) -> usize {
-            if r < 0 {
+            if r.is_leaf() {
                 1
             } else {
-                let [c0, c1] = b.nodes[r as usize].children;
+                let [c0, c1] = b.children(r);
                 1 + rec(b, c0).max(rec(b, c1))
             }
         }
@@ -273,8 +396,47 @@ impl Bvh {
     }
 }
 
-/// The triangle of a leaf reference.
-#[inline(always)]
-pub(crate) fn leaf_triangle(r: NodeRef) -> usize {
-    (-(r as i64) - 1) as usize
+/// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
+pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(v.len())
+        .map_err(|_| Error::ModelOutOfMemory)?;
+    out.extend_from_slice(v);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The descent of [`NodeRef`]'s documentation: every triangle once.
+    #[test]
+    fn descent_example() {
+        fn triangles_below(bvh: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
+            match r.kind() {
+                NodeKind::Leaf(t) => out.push(t),
+                NodeKind::Inner(_) => {
+                    for c in bvh.children(r) {
+                        triangles_below(bvh, c, out);
+                    }
+                }
+            }
+        }
+        let tris = (0..40).map(|i| {
+            let x = f64::from(i);
+            let t = [
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x + 1.0, 0.5, 0.0),
+                Vec3::new(x, 1.0, 0.25 * x),
+            ];
+            (t, i)
+        });
+        let bvh = Bvh::build(tris.collect(), VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        let mut all = Vec::new();
+        triangles_below(&bvh, bvh.root(), &mut all);
+        all.sort_unstable();
+        assert_eq!(all, (0..40).collect::<Vec<_>>());
+        assert_eq!(NodeRef::leaf(7).kind(), NodeKind::Leaf(7));
+        assert_eq!(NodeRef::inner(3).kind(), NodeKind::Inner(3));
+    }
 }

@@ -10,7 +10,7 @@
 //! This hierarchy stores only inner nodes, in model coordinates, with leaves computed from their
 //! triangles; [`Bvh::pqp_view`] lays it out PQP's way. Nothing here is used by the queries.
 
-use super::{leaf_triangle, Bvh, NodeRef, MAX_DEPTH};
+use super::{Bvh, NodeRef, MAX_DEPTH};
 use crate::error::Error;
 use crate::math::{Mat3, Vec3};
 
@@ -70,15 +70,15 @@ impl Bvh {
                 corner: ssv.origin,
                 center: obb.center,
             };
-            let first_child = if r >= 0 {
-                let [c0, c1] = self.nodes[r as usize].children;
+            let first_child = if !r.is_leaf() {
+                let [c0, c1] = self.children(r);
                 let first = next;
                 next += 2;
                 work.push((first + 1, c1, Some(here)));
                 work.push((first, c0, Some(here)));
                 first as i32
             } else {
-                -(self.added[leaf_triangle(r)] as i32) - 1
+                -(self.added[r.triangle()] as i32) - 1
             };
             let relative = match parent {
                 None => here,
@@ -118,7 +118,7 @@ impl Bvh {
 mod tests {
     use super::*;
     use crate::bounding_volume::BoundingVolume;
-    use crate::model::{CollisionVolume, VolumeKind};
+    use crate::bvh::{CollisionVolume, VolumeKind};
     use crate::test_rng::Lcg;
 
     /// The layout's tree, with each volume's absolute frame recomposed from its parent's: every
@@ -164,18 +164,18 @@ mod tests {
                     (bv.lengths, bv.radius, bv.half),
                     (ssv.lengths, ssv.radius, obb.half)
                 );
-                if r >= 0 {
+                if !r.is_leaf() {
                     // Depth first: a node's children take the next two free slots.
                     assert_eq!(bv.first_child as usize, next, "slot {k}");
                     next += 2;
-                    let [c0, c1] = bvh.nodes[r as usize].children;
+                    let [c0, c1] = bvh.children(r);
                     let f = bv.first_child as usize;
                     stack.push((f + 1, c1, rot, corner, center));
                     stack.push((f, c0, rot, corner, center));
                 } else {
                     let t = (-bv.first_child - 1) as usize;
                     assert!(!std::mem::replace(&mut leaves[t], true));
-                    assert_eq!(bvh.tri(leaf_triangle(r)), tris[t].0);
+                    assert_eq!(bvh.tri(r.triangle()), tris[t].0);
                     for v in &tris[t].0 {
                         assert!(ssv.contains(v, 0.0) && obb.contains(v, 0.0));
                     }

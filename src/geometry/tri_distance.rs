@@ -8,7 +8,7 @@ use crate::math::Vec3;
 /// Distance between two triangles with a closest point on each (`p` on `a`, `q` on `b`). When
 /// they intersect or touch, the distance is 0 and `p == q` is a common point.
 ///
-/// Contact is decided exactly (as [`tri_overlap`](super::tri_overlap), with which this function
+/// Contact is decided exactly (as [`tri_overlap`](super::tri_overlap()), with which this function
 /// agrees: the distance is 0 exactly when the triangles share a point; a separation that rounds to
 /// 0 is reported as one rounding of the coordinates' magnitude, never as 0). Otherwise the closest
 /// pair is among the 9 edge pairs and the 6 vertex-against-face pairs, each computed to a few

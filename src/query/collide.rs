@@ -3,7 +3,7 @@
 use super::traversal::{descend_first, LeafCache, NodePair, PairStack};
 use super::{prepare, Stats};
 use crate::bounding_volume::OverlapVolume;
-use crate::bvh::{leaf_triangle, Bvh, NodeRef};
+use crate::bvh::{Bvh, NodeRef};
 use crate::error::Error;
 use crate::geometry::{tri_overlap, Tri};
 use crate::math::{Pose, RelPose};
@@ -130,10 +130,10 @@ fn search<V: OverlapVolume>(
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
-        if p.a < 0 && p.b < 0 {
+        if p.a.is_leaf() && p.b.is_leaf() {
             // Two triangles: test them at once (their volumes, computed from them, would cost
             // about as much as the test).
-            let (ta, tb) = (leaf_triangle(p.a), leaf_triangle(p.b));
+            let (ta, tb) = (p.a.triangle(), p.b.triangle());
             stats.tri_tests += 1;
             let t2 = b2.tri(tb);
             let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
@@ -149,13 +149,13 @@ fn search<V: OverlapVolume>(
             continue;
         }
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
-        if p.a < 0 || p.b < 0 {
-            let direct = if p.b < 0 {
-                let t = b2.tri(leaf_triangle(p.b));
+        if p.a.is_leaf() || p.b.is_leaf() {
+            let direct = if p.b.is_leaf() {
+                let t = b2.tri(p.b.triangle());
                 let moved: Tri = [rel.apply(&t[0]), rel.apply(&t[1]), rel.apply(&t[2])];
                 V::overlap_triangle(&volume(b1, p.a), &moved)
             } else {
-                let t = b1.tri(leaf_triangle(p.a));
+                let t = b1.tri(p.a.triangle());
                 let moved: Tri = [
                     rel.apply_inverse(&t[0]),
                     rel.apply_inverse(&t[1]),
@@ -167,12 +167,12 @@ fn search<V: OverlapVolume>(
                 stats.bv_tests += 1;
                 if hit {
                     // Descend the node; the triangle stays.
-                    if p.b < 0 {
-                        let [c0, c1] = b1.nodes[p.a as usize].children;
+                    if p.b.is_leaf() {
+                        let [c0, c1] = b1.children(p.a);
                         stack.push(NodePair { a: c1, ..p });
                         stack.push(NodePair { a: c0, ..p });
                     } else {
-                        let [c0, c1] = b2.nodes[p.b as usize].children;
+                        let [c0, c1] = b2.children(p.b);
                         stack.push(NodePair { b: c1, ..p });
                         stack.push(NodePair { b: c0, ..p });
                     }
@@ -189,11 +189,11 @@ fn search<V: OverlapVolume>(
             continue;
         }
         if descend_first(p.a, p.b, &va, &vb) {
-            let [c0, c1] = b1.nodes[p.a as usize].children;
+            let [c0, c1] = b1.children(p.a);
             stack.push(NodePair { a: c1, ..p });
             stack.push(NodePair { a: c0, ..p });
         } else {
-            let [c0, c1] = b2.nodes[p.b as usize].children;
+            let [c0, c1] = b2.children(p.b);
             stack.push(NodePair { b: c1, ..p });
             stack.push(NodePair { b: c0, ..p });
         }

@@ -1,6 +1,6 @@
 //! Separation distance, exact or within a relative/absolute error, with closest points.
 
-use super::front::Front;
+use super::front::{Front, FrontQuery};
 use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
 use super::{prepare, Stats, TriCache};
 use crate::error::Error;
@@ -160,13 +160,18 @@ pub fn distance_into(
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
     let mut leaves = LeafVolumes::default();
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
-    if result
-        .front
-        .worth_recording(m1, m2, b1, b2, &rel, &options.search)
-    {
+    let asked = FrontQuery {
+        m1,
+        m2,
+        b1,
+        b2,
+        rel: &rel,
+        search: &options.search,
+    };
+    if result.front.worth_recording(&asked) {
         search.record_front(result.front.take_spare());
     }
-    let front = result.front.start(m1, m2, b1, b2, &rel, &options.search);
+    let front = result.front.start(&asked);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
     // and b + abs_err >= d. With abs_err = 0 that is b >= d, exactly. A pair with bound 0 must not
@@ -182,7 +187,7 @@ pub fn distance_into(
             (d / scale).max(d - abs_err)
         }
     };
-    search.run_from(
+    search.run(
         &options.search,
         Strategy::Priority,
         cutoff,

@@ -27,7 +27,7 @@
 //! the last query on the same models was that near, so that queries at unrelated poses do not pay
 //! for one: a coherent motion records from its second query and uses a front from its third.
 
-use super::search::{Search, Strategy};
+use super::strategy::{Search, Strategy};
 use super::traversal::NodePair;
 use crate::bvh::{Bvh, NodeRef};
 use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
@@ -140,9 +140,21 @@ pub(crate) struct Front {
     base: usize,
 }
 
+/// The query a front is asked about: the two models with their hierarchies, the relative pose of
+/// model 2 in model 1's frame, and how the query searches.
+#[derive(Clone, Copy)]
+pub(crate) struct FrontQuery<'a> {
+    pub m1: &'a Model,
+    pub m2: &'a Model,
+    pub b1: &'a Bvh,
+    pub b2: &'a Bvh,
+    pub rel: &'a RelPose,
+    pub search: &'a Search,
+}
+
 impl Front {
     /// A front of more than this many times its size after the last search from the root is
-    /// dropped (measured on the tumbling tori of BENCHMARKS.md).
+    /// dropped: past it, the fine nodes left where the models were near cost more than they save.
     const GROWTH: f64 = 1.25;
     /// The relative pose may have moved by at most this much (each rotation entry, and each
     /// translation coordinate in units of the models' root volume sizes) for the front to be used.
@@ -155,22 +167,14 @@ impl Front {
         v
     }
 
-    /// Whether the query at `rel` should record its front for the next: the last query was on the
+    /// Whether the query `q` should record its front for the next: the last query was on the
     /// same models, from a pose near this one, and the search is one that uses a front.
-    pub fn worth_recording(
-        &self,
-        m1: &Model,
-        m2: &Model,
-        b1: &Bvh,
-        b2: &Bvh,
-        rel: &RelPose,
-        search: &Search,
-    ) -> bool {
+    pub fn worth_recording(&self, q: &FrontQuery) -> bool {
         self.last.as_ref().is_some_and(|(u1, u2, prev)| {
-            Self::uses_front(search)
-                && *u1 == m1.uid()
-                && *u2 == m2.uid()
-                && Self::change(prev, rel, b1, b2).is_some()
+            Self::uses_front(q.search)
+                && *u1 == q.m1.uid()
+                && *u2 == q.m2.uid()
+                && Self::change(prev, q.rel, q.b1, q.b2).is_some()
         })
     }
 
@@ -188,27 +192,19 @@ impl Front {
         (dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale).then_some((dr, dt))
     }
 
-    /// The front to start the query at `rel` from, if it suits it, with how much its bounds may
+    /// The front to start the query `q` from, if it suits it, with how much its bounds may
     /// have shrunk since they were computed.
-    pub fn start(
-        &self,
-        m1: &Model,
-        m2: &Model,
-        b1: &Bvh,
-        b2: &Bvh,
-        rel: &RelPose,
-        search: &Search,
-    ) -> Option<(&[FrontPair], Motion)> {
+    pub fn start(&self, q: &FrontQuery) -> Option<(&[FrontPair], Motion)> {
         let prev = self.rel.as_ref()?;
-        let same = Self::uses_front(search)
-            && self.uid1 == m1.uid()
-            && self.uid2 == m2.uid()
+        let same = Self::uses_front(q.search)
+            && self.uid1 == q.m1.uid()
+            && self.uid2 == q.m2.uid()
             && !self.nodes.is_empty();
         if !same {
             return None;
         }
-        let (dr, dt) = Self::change(prev, rel, b1, b2)?;
-        let slack_scale = rel.trans.norm() + prev.trans.norm() + b1.reach() + b2.reach();
+        let (dr, dt) = Self::change(prev, q.rel, q.b1, q.b2)?;
+        let slack_scale = q.rel.trans.norm() + prev.trans.norm() + q.b1.reach() + q.b2.reach();
         let motion = Motion {
             dr,
             dt,
@@ -216,7 +212,7 @@ impl Front {
             whole: 0.0,
             slack_scale,
         };
-        let whole = motion.bound(&Vec3::zeros(), b2.reach());
+        let whole = motion.bound(&Vec3::zeros(), q.b2.reach());
         Some((&self.nodes[..], Motion { whole, ..motion }))
     }
 
@@ -288,15 +284,17 @@ mod tests {
             let model = Model::from_triangles(tris).unwrap();
             let bvh = model.bvh().unwrap();
             fn below(b: &Bvh, r: NodeRef, out: &mut Vec<usize>) {
-                if r < 0 {
-                    out.push(crate::bvh::leaf_triangle(r));
+                if r.is_leaf() {
+                    out.push(r.triangle());
                 } else {
-                    for c in b.nodes[r as usize].children {
+                    for c in b.children(r) {
                         below(b, c, out);
                     }
                 }
             }
-            let refs = (0..bvh.nodes.len() as NodeRef).chain((0..300).map(|t| -t - 1));
+            let refs = (0..bvh.num_inner())
+                .map(NodeRef::inner)
+                .chain((0..300).map(NodeRef::leaf));
             for r in refs {
                 let (o, e) = bvh.anchor(r);
                 let mut tri = Vec::new();

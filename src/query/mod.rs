@@ -9,14 +9,17 @@
 mod collide;
 mod distance;
 mod front;
+#[cfg(test)]
+mod layering_tests;
 mod queue;
 pub(crate) mod search;
+mod strategy;
 mod tolerance;
 mod traversal;
 
 pub use collide::{collide, collide_into, CollideResult, ContactMode, ContactPair};
 pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
-pub use search::{Search, Strategy};
+pub use strategy::{Search, Strategy};
 pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
 
 use crate::bvh::Bvh;

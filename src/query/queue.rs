@@ -7,9 +7,8 @@
 //! which order as the bounds do for non-negative doubles, and a node waits in the bucket of the
 //! highest bit in which its key differs from the last key popped. A push is one append; a pop takes
 //! from bucket 0 (keys equal to the last) or, when that is empty, spreads the lowest non-empty
-//! bucket over the lower ones, which each node undergoes at most 63 times. Against the binary heap
-//! it replaced (whose sifting comparisons were unpredictable branches) the spheres of BENCHMARKS.md
-//! take about a tenth less time per query.
+//! bucket over the lower ones, which each node undergoes at most 63 times. It replaced a binary
+//! heap, whose sifting comparisons were unpredictable branches.
 
 use super::traversal::NodePair;
 use crate::bvh::NodeRef;
@@ -185,8 +184,8 @@ mod tests {
                         _ => last + f64::from_bits(next() % (1u64 << 62)).min(1e300),
                     };
                     q.push(NodePair {
-                        a: pushed,
-                        b: -pushed,
+                        a: NodeRef::from_raw(pushed),
+                        b: NodeRef::from_raw(-pushed),
                         bound,
                     });
                     reference.push((std::cmp::Reverse(bound.to_bits()), pushed));
@@ -195,7 +194,7 @@ mod tests {
                     let (std::cmp::Reverse(key), id) = reference.pop().unwrap();
                     let p = q.pop().unwrap();
                     assert_eq!(
-                        (p.bound.to_bits(), p.a, p.b),
+                        (p.bound.to_bits(), p.a.raw(), p.b.raw()),
                         (key, id, -id),
                         "round {round}"
                     );
@@ -207,7 +206,7 @@ mod tests {
             }
             while let Some((std::cmp::Reverse(key), id)) = reference.pop() {
                 let p = q.pop().unwrap();
-                assert_eq!((p.bound.to_bits(), p.a), (key, id));
+                assert_eq!((p.bound.to_bits(), p.a.raw()), (key, id));
             }
             assert!(q.pop().is_none() && q.len() == 0);
             assert!(pops > 300 && ties > 50, "{pops} {ties}");
@@ -220,14 +219,14 @@ mod tests {
         let mut q = RadixQueue::default();
         for i in 0..100 {
             q.push(NodePair {
-                a: i,
-                b: 0,
+                a: NodeRef::from_raw(i),
+                b: NodeRef::from_raw(0),
                 bound: f64::from(i % 7) * 0.5,
             });
         }
         assert_eq!(q.pop().map(|p| p.bound), Some(0.0));
         let mut got = vec![];
-        q.drain(|p| got.push(p.a));
+        q.drain(|p| got.push(p.a.raw()));
         got.sort_unstable();
         assert_eq!(got.len(), 99);
         assert!(got.windows(2).all(|w| w[0] < w[1]));
@@ -235,10 +234,10 @@ mod tests {
         assert!(q.pop().is_none());
         q.clear();
         q.push(NodePair {
-            a: 5,
-            b: 6,
+            a: NodeRef::from_raw(5),
+            b: NodeRef::from_raw(6),
             bound: 0.25,
         });
-        assert_eq!(q.pop().map(|p| (p.a, p.b)), Some((5, 6)));
+        assert_eq!(q.pop().map(|p| (p.a.raw(), p.b.raw())), Some((5, 6)));
     }
 }

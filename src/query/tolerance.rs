@@ -130,6 +130,7 @@ pub fn tolerance_into(
         |d| d <= limit,
         // The cutoff falls only with a pair within the tolerance, which stops the search.
         true,
+        None,
     );
     let best = search.best;
     result.stats = search.stats;

@@ -2,7 +2,7 @@
 //! fixed-size stack, so that no query allocates.
 
 use crate::bounding_volume::BoundingVolume;
-use crate::bvh::{leaf_triangle, NodeRef, MAX_DEPTH};
+use crate::bvh::{NodeRef, MAX_DEPTH};
 use std::mem::MaybeUninit;
 
 /// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.
@@ -64,10 +64,10 @@ impl PairStack {
 /// whichever is not a leaf (both leaves is handled by the caller).
 #[inline]
 pub(crate) fn descend_first<B: BoundingVolume>(a: NodeRef, b: NodeRef, va: &B, vb: &B) -> bool {
-    if b < 0 {
+    if b.is_leaf() {
         return true;
     }
-    if a < 0 {
+    if a.is_leaf() {
         return false;
     }
     va.size() >= vb.size()
@@ -91,7 +91,7 @@ pub(crate) struct LeafCache<V> {
 impl<V: Copy> Default for LeafCache<V> {
     fn default() -> Self {
         LeafCache {
-            keys: [0; LEAF_SLOTS],
+            keys: [NodeRef::inner(0); LEAF_SLOTS],
             volumes: [const { MaybeUninit::uninit() }; LEAF_SLOTS],
             spare: MaybeUninit::uninit(),
         }
@@ -99,10 +99,10 @@ impl<V: Copy> Default for LeafCache<V> {
 }
 
 impl<V: Copy> LeafCache<V> {
-    /// The slot of leaf `r` (< 0), filled with its volume (`leaf(r)`) if it holds another.
+    /// The slot of leaf `r`, filled with its volume (`leaf(r)`) if it holds another.
     #[inline(always)]
     fn fill(&mut self, r: NodeRef, leaf: impl Fn(NodeRef) -> V) -> usize {
-        let i = leaf_triangle(r) % LEAF_SLOTS;
+        let i = r.triangle() % LEAF_SLOTS;
         if self.keys[i] != r {
             self.volumes[i] = MaybeUninit::new(leaf(r));
             self.keys[i] = r;
@@ -118,7 +118,7 @@ impl<V: Copy> LeafCache<V> {
         inner: impl Fn(NodeRef) -> &'x V,
         leaf: impl Fn(NodeRef) -> V + Copy,
     ) -> &'x V {
-        if r >= 0 {
+        if !r.is_leaf() {
             return inner(r);
         }
         let i = self.fill(r, leaf);
@@ -136,11 +136,11 @@ impl<V: Copy> LeafCache<V> {
         leaf: impl Fn(NodeRef) -> V + Copy,
     ) -> [&'x V; 2] {
         let [r0, r1] = rs;
-        let i0 = if r0 < 0 { self.fill(r0, leaf) } else { 0 };
-        let i1 = if r1 < 0 { self.fill(r1, leaf) } else { 0 };
+        let i0 = if r0.is_leaf() { self.fill(r0, leaf) } else { 0 };
+        let i1 = if r1.is_leaf() { self.fill(r1, leaf) } else { 0 };
         // Two leaves of one slot (never two siblings: their triangles are consecutive): the
         // second evicted the first, which goes to the spare.
-        let first_spare = r0 < 0 && r1 < 0 && r0 != r1 && i0 == i1;
+        let first_spare = r0.is_leaf() && r1.is_leaf() && r0 != r1 && i0 == i1;
         if first_spare {
             self.spare = MaybeUninit::new(leaf(r0));
         }
@@ -149,12 +149,12 @@ impl<V: Copy> LeafCache<V> {
             // Checked (a cheap, predictable branch) rather than trusted: a wrong slot must not
             // read an uninitialised one.
             assert_eq!(this.keys[i], r);
-            // SAFETY: a slot whose key is a leaf (< 0) holds that leaf's volume (set together in
+            // SAFETY: a slot whose key is a leaf holds that leaf's volume (set together in
             // `fill`).
             unsafe { this.volumes[i].assume_init_ref() }
         };
         [
-            if r0 >= 0 {
+            if !r0.is_leaf() {
                 inner(r0)
             } else if first_spare {
                 // SAFETY: set just above.
@@ -162,19 +162,19 @@ impl<V: Copy> LeafCache<V> {
             } else {
                 at(r0, i0)
             },
-            if r1 >= 0 { inner(r1) } else { at(r1, i1) },
+            if !r1.is_leaf() { inner(r1) } else { at(r1, i1) },
         ]
     }
 
     /// Node `r`'s volume, as `volume(r)` gives it; a leaf's from the table when it is there.
     #[inline(always)]
     pub fn get(&mut self, r: NodeRef, volume: impl Fn(NodeRef) -> V) -> V {
-        if r >= 0 {
+        if !r.is_leaf() {
             return volume(r);
         }
-        let i = leaf_triangle(r) % LEAF_SLOTS;
+        let i = r.triangle() % LEAF_SLOTS;
         if self.keys[i] == r {
-            // SAFETY: a slot's key is set to a leaf (< 0) only together with its volume.
+            // SAFETY: a slot's key is set to a leaf only together with its volume.
             unsafe { self.volumes[i].assume_init() }
         } else {
             let v = volume(r);
@@ -199,15 +199,21 @@ mod tests {
         let computed = Cell::new(0);
         let leaf = |r: NodeRef| {
             computed.set(computed.get() + 1);
-            -(r as i64)
+            -(r.raw() as i64)
         };
         let mut cache = LeafCache::<i64>::default();
-        let expect = |r: NodeRef| if r >= 0 { 1000 + r as i64 } else { -(r as i64) };
-        let pairs: [[NodeRef; 2]; 7] = [
+        let expect = |r: NodeRef| {
+            if r.is_leaf() {
+                -(r.raw() as i64)
+            } else {
+                1000 + r.raw() as i64
+            }
+        };
+        let pairs: [[i32; 2]; 7] = [
             [-1, -2],
             [-1, -2],
-            [-1, -1 - LEAF_SLOTS as NodeRef],
-            [-1 - LEAF_SLOTS as NodeRef, -1],
+            [-1, -1 - LEAF_SLOTS as i32],
+            [-1 - LEAF_SLOTS as i32, -1],
             [5, -3],
             [-3, 7],
             [-3, -3],
@@ -215,15 +221,20 @@ mod tests {
         let mut expected_computed = 0;
         for (k, rs) in pairs.into_iter().enumerate() {
             let before = computed.get();
-            let got = cache.get_two(rs, |r| &inner_volumes[r as usize], leaf);
+            let rs = rs.map(NodeRef::from_raw);
+            let got = cache.get_two(rs, |r| &inner_volumes[r.raw() as usize], leaf);
             assert_eq!([*got[0], *got[1]], rs.map(expect), "pair {k}");
             expected_computed += [2, 0, 2, 2, 1, 0, 0][k];
             assert_eq!(computed.get(), expected_computed, "pair {k} from {before}");
         }
-        assert_eq!(*cache.get_ref(-2, |r| &inner_volumes[r as usize], leaf), 2);
-        assert_eq!(cache.get(-2, leaf), 2);
+        let (leaf2, inner9) = (NodeRef::from_raw(-2), NodeRef::from_raw(9));
         assert_eq!(
-            *cache.get_ref(9, |r| &inner_volumes[r as usize], leaf),
+            *cache.get_ref(leaf2, |r| &inner_volumes[r.raw() as usize], leaf),
+            2
+        );
+        assert_eq!(cache.get(leaf2, leaf), 2);
+        assert_eq!(
+            *cache.get_ref(inner9, |r| &inner_volumes[r.raw() as usize], leaf),
             1009
         );
     }

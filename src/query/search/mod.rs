@@ -1,0 +1,177 @@
+//! The search of the bounding volume test tree (BVTT) for a closest triangle pair, shared by the
+//! distance and tolerance queries, and the strategies it can follow.
+//!
+//! Every strategy visits a BVTT node only while its lower bound could still improve the answer, so
+//! all of them return the same exact distance; they differ in the order of the visits, hence in how
+//! soon a good answer prunes the rest. A priority-directed search with an unbounded queue expands
+//! nodes in increasing order of bound, so it expands no node whose bound is above the final distance:
+//! it does the least work any search with these volumes can do (the minimal BVTT). The default
+//! bounds the queue (see [`Search::DEFAULT_QSIZE`]) so that where the bounds cannot tell pairs apart
+//! the overflow goes depth-first instead of growing a queue of a million pairs.
+//!
+//! The search is split by job: this file holds its state and its entry points ([`ClosestSearch::run`]
+//! and what records the front); `strategies.rs` the three visiting orders; `visit.rs` what one
+//! BVTT node costs (a leaf pair's triangle test, an inner node's expansion); `bounds.rs` the
+//! bounds of a pair's children (the descent rule, the leaves' and posed volumes' caches). The
+//! stop rules are the caller's: the distance and tolerance queries pass them to `run`.
+
+mod bounds;
+mod strategies;
+mod visit;
+
+pub use super::strategy::{Search, Strategy};
+pub(crate) use bounds::{expand, root_pair, LeafVolumes};
+
+use super::front::{FrontPair, Motion};
+use super::traversal::NodePair;
+use super::Stats;
+use crate::bounding_volume::Ssv;
+use crate::bvh::Bvh;
+use crate::geometry::{Plane, Tri};
+use crate::math::{RelPose, Vec3};
+
+/// The closest triangle pair found so far, with its points in model 1's frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Best {
+    pub d: f64,
+    pub p: Vec3,
+    pub q: Vec3,
+    pub ta: usize,
+    pub tb: usize,
+}
+
+/// A search of the BVTT of two hierarchies for their closest triangle pair. The distance and
+/// tolerance queries differ only in when they prune and when they stop.
+pub(crate) struct ClosestSearch<'a> {
+    b1: &'a Bvh,
+    b2: &'a Bvh,
+    rel: RelPose,
+    /// The bounds' rounding allowance, one for every pair of the two models.
+    slack: f64,
+    /// The triangle whose plane last showed a pair apart, to be tried first next time.
+    plane_first: Plane,
+    /// The model 2 triangle last tested, posed in model 1's frame, and its index (`usize::MAX`:
+    /// none yet): consecutive tests often share it (a leaf against a node of two leaves).
+    posed: (usize, Tri),
+    /// No triangle pair of the two models needs rescaling (see [`Bvh::in_kernel_range`]).
+    in_range: bool,
+    pub best: Best,
+    pub stats: Stats,
+    /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
+    pub pruned_min: f64,
+    /// The caller's (a few kilobytes: made in place there rather than moved with the search).
+    leaves: &'a mut LeafVolumes,
+    /// With `Some`, every BVTT node the search leaves behind (pruned, tested as a leaf pair, or
+    /// unvisited when it stops) is recorded here with its bound, and the axis that shows it when
+    /// the search has one: a cut of the BVTT, the front from which the next query under coherent
+    /// motion can start (see `front.rs`). `None` also when storage ran out.
+    front: Option<Vec<FrontPair>>,
+}
+
+impl<'a> ClosestSearch<'a> {
+    /// A search whose first answer is the given triangle pair (the cached one), if any; otherwise
+    /// it starts with no answer (distance infinite).
+    pub fn new(
+        b1: &'a Bvh,
+        b2: &'a Bvh,
+        rel: RelPose,
+        start: Option<(usize, usize)>,
+        leaves: &'a mut LeafVolumes,
+    ) -> Self {
+        let mut s = ClosestSearch {
+            b1,
+            b2,
+            rel,
+            slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
+            plane_first: Plane::A,
+            posed: (usize::MAX, [Vec3::zeros(); 3]),
+            in_range: b1.in_kernel_range(b2, &rel),
+            best: Best {
+                d: f64::INFINITY,
+                p: Vec3::zeros(),
+                q: Vec3::zeros(),
+                ta: 0,
+                tb: 0,
+            },
+            stats: Stats::default(),
+            pruned_min: f64::INFINITY,
+            leaves,
+            front: None,
+        };
+        if let Some((ta, tb)) = start.filter(|&(a, b)| a < b1.num_tris() && b < b2.num_tris()) {
+            s.test_triangles(ta, tb);
+        }
+        s
+    }
+
+    /// Runs the search; `Auto` runs as `auto` (the caller's query knows which is best for it).
+    /// `cutoff(best)` is the least bound of a BVTT node that cannot improve the
+    /// answer `best` enough to be worth visiting (nondecreasing in `best`): such nodes are pruned.
+    /// `stop(best)` ends the search early. `fixed_cutoff`: the cutoff does not fall before `stop`
+    /// ends the search (a tolerance query's), so that a depth-first search loses nothing by asking
+    /// for loose bounds (see [`depth_first`](ClosestSearch::depth_first)).
+    ///
+    /// With `front`, it starts from the BVTT nodes of the front (a cut of the BVTT: every triangle
+    /// pair lies below one of them) instead of the root, when the search is priority-directed;
+    /// other strategies start from the root. A front node's bound held before the `motion`; less
+    /// the motion of the node's points, it bounds the triangles below it now.
+    pub fn run(
+        &mut self,
+        search: &Search,
+        auto: Strategy,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+        fixed_cutoff: bool,
+        front: Option<(&[FrontPair], Motion)>,
+    ) {
+        if stop(self.best.d) {
+            return;
+        }
+        let strategy = search.resolve(auto);
+        if let (Strategy::Priority, Some((front, motion))) = (strategy, front) {
+            return self.priority(None, front, Some(motion), search.qsize, cutoff, stop);
+        }
+        self.stats.bv_tests += 1;
+        let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
+        match strategy {
+            Strategy::Auto | Strategy::DepthFirst => {
+                self.depth_first(root, cutoff, stop, fixed_cutoff);
+            }
+            Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
+            Strategy::Priority => self.priority(Some(root), &[], None, search.qsize, cutoff, stop),
+        }
+    }
+
+    /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).
+    pub fn record_front(&mut self, mut buffer: Vec<FrontPair>) {
+        buffer.clear();
+        self.front = Some(buffer);
+    }
+
+    /// The front recorded, if it was asked for and storage did not run out.
+    pub fn take_front(&mut self) -> Option<Vec<FrontPair>> {
+        self.front.take()
+    }
+
+    /// Notes a pruned node; its bound, like every bound, is a lower bound on what lies below it.
+    /// `axis`: a unit vector along which the node's volumes are at least that far apart (zero:
+    /// none known).
+    #[inline]
+    fn pruned(&mut self, p: &NodePair, axis: Vec3) {
+        self.pruned_min = self.pruned_min.min(p.bound);
+        self.left(p, axis);
+    }
+
+    /// Records a node the search leaves behind in the front, when it keeps one.
+    #[inline]
+    fn left(&mut self, p: &NodePair, axis: Vec3) {
+        if let Some(front) = &mut self.front {
+            if front.try_reserve(1).is_ok() {
+                front.push(FrontPair { pair: *p, axis });
+            } else {
+                // Out of memory: no front this time (it only saves work).
+                self.front = None;
+            }
+        }
+    }
+}

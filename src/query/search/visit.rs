@@ -1,0 +1,141 @@
+//! What visiting one BVTT node costs the search: a pair of leaves is a triangle test (the closest
+//! pair yet kept, the pair left in the front), an inner pair is expanded into its children with
+//! their bounds (`bounds.rs`).
+
+use super::bounds::{expand, leaf_children, Child, LeafChildren};
+use super::{Best, ClosestSearch};
+use crate::bounding_volume::Want;
+use crate::geometry::{tri_distance_below, Near};
+use crate::math::Vec3;
+use crate::query::traversal::NodePair;
+
+impl ClosestSearch<'_> {
+    /// Tests a triangle pair, keeps it if it is the closest yet, and returns its distance with the
+    /// vector between its closest points (from `ta` to `tb`, in model 1's frame); or, for a pair at
+    /// least as far apart as the closest yet when no front is recorded, possibly that distance with
+    /// a zero vector.
+    pub(super) fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
+        self.stats.tri_tests += 1;
+        if self.posed.0 != tb {
+            let t2 = self.b2.tri(tb);
+            self.posed = (
+                tb,
+                [
+                    self.rel.apply(&t2[0]),
+                    self.rel.apply(&t2[1]),
+                    self.rel.apply(&t2[2]),
+                ],
+            );
+        }
+        let moved = &self.posed.1;
+        // A front keeps the pair's bound for the next query: the exact distance prunes more of
+        // the next query than its cost here.
+        let cutoff = if self.front.is_some() {
+            f64::INFINITY
+        } else {
+            self.best.d
+        };
+        let c = match tri_distance_below(
+            &self.b1.tri(ta),
+            moved,
+            cutoff,
+            self.plane_first,
+            self.in_range,
+        ) {
+            Near::Closest(c) => c,
+            Near::Apart(plane) => {
+                self.plane_first = plane;
+                return (cutoff, Vec3::zeros());
+            }
+        };
+        if c.distance < self.best.d {
+            self.best = Best {
+                d: c.distance,
+                p: c.p,
+                q: c.q,
+                ta,
+                tb,
+            };
+        }
+        (c.distance, c.q - c.p)
+    }
+
+    /// As [`visit_unordered`](ClosestSearch::visit_unordered), the nearer child first.
+    #[inline]
+    pub(super) fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
+        self.visit_unordered(p, cutoff, exact).map(|[x, y]| {
+            if y.0.bound < x.0.bound {
+                [y, x]
+            } else {
+                [x, y]
+            }
+        })
+    }
+
+    /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
+    /// their bounds (below `cutoff`, exact if `exact`) and separating axes (see [`expand`]).
+    ///
+    /// Without `exact`, a leaf against a node of two leaves goes straight to its two triangle
+    /// pairs, as if a leaf pair; against a node of a leaf and an inner node (when no front is
+    /// kept), the leaf pair does, and the other child comes back with a placeholder at an
+    /// infinite bound for the second (see [`depth_first`](ClosestSearch::depth_first)).
+    #[inline]
+    pub(super) fn visit_unordered(
+        &mut self,
+        p: &NodePair,
+        cutoff: f64,
+        exact: bool,
+    ) -> Option<[Child; 2]> {
+        if !exact {
+            match leaf_children(self.b1, self.b2, p) {
+                LeafChildren::Both([x, y]) => {
+                    self.leaf_pair(&x);
+                    self.leaf_pair(&y);
+                    return None;
+                }
+                LeafChildren::One(x, y) if self.front.is_none() => {
+                    // The leaf pair straight to its triangles, the other bounded alone; the
+                    // second child is a placeholder a depth-first search prunes (no front
+                    // records it).
+                    self.leaf_pair(&x);
+                    self.stats.bv_tests += 1;
+                    let want = Want { axes: false, exact };
+                    let c = self.bound_one(&y, cutoff, want);
+                    let none = NodePair {
+                        bound: f64::INFINITY,
+                        ..y
+                    };
+                    return Some([c, (none, Vec3::zeros())]);
+                }
+                _ => {}
+            }
+        }
+        let want = Want {
+            axes: self.front.is_some(),
+            exact,
+        };
+        let (rel, slack) = (&self.rel, self.slack);
+        match expand(self.b1, self.b2, rel, slack, p, cutoff, want, self.leaves) {
+            Some(children) => {
+                self.stats.bv_tests += 2;
+                Some(children)
+            }
+            None => {
+                self.leaf_pair(p);
+                None
+            }
+        }
+    }
+
+    /// Tests the triangles of a pair of leaves, and leaves the pair in the front.
+    #[inline]
+    pub(super) fn leaf_pair(&mut self, p: &NodePair) {
+        let (d, gap) = self.test_triangles(p.a.triangle(), p.b.triangle());
+        // The pair's own distance, which the closest points' axis shows: the tightest bound the
+        // front can keep for it (the axis made a unit vector only for a front).
+        if self.front.is_some() {
+            let axis = if d > 0.0 { gap / d } else { Vec3::zeros() };
+            self.left(&NodePair { bound: d, ..*p }, axis);
+        }
+    }
+}
