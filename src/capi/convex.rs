@@ -8,8 +8,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep the names the rest of the header uses.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, into_handle, read_doubles, read_pose,
-    reset, status, PQP_ERR_INTERNAL,
+    boundary, code, count, deref, deref_mut, free_handle, getter, into_handle, read_doubles,
+    read_pose, reset, status, PQP_ERR_INTERNAL,
 };
 use crate::convex::{
     convex_distance, convex_penetration, ConvexDistance, ConvexModel, ConvexPairCache,
@@ -117,17 +117,20 @@ fn length(n: c_int) -> Result<usize, Error> {
 /// # Safety
 /// `xyz` is NULL or points to `3 n` readable doubles.
 unsafe fn read_points(xyz: *const f64, n: c_int) -> Result<Vec<[f64; 3]>, Error> {
-    if xyz.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if xyz.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let n = length(n)?;
+        let mut out = Vec::new();
+        out.try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        for i in 0..n {
+            out.push(read_doubles::<3>(xyz.add(3 * i))?);
+        }
+        Ok(out)
     }
-    let n = length(n)?;
-    let mut out = Vec::new();
-    out.try_reserve_exact(n)
-        .map_err(|_| Error::ModelOutOfMemory)?;
-    for i in 0..n {
-        out.push(read_doubles::<3>(xyz.add(3 * i))?);
-    }
-    Ok(out)
 }
 
 /// Copies `n` non-negative ints from C as indices or counts.
@@ -135,17 +138,20 @@ unsafe fn read_points(xyz: *const f64, n: c_int) -> Result<Vec<[f64; 3]>, Error>
 /// # Safety
 /// `p` is NULL or points to `n` readable ints.
 unsafe fn read_indices(p: *const c_int, n: usize) -> Result<Vec<u32>, Error> {
-    if p.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if p.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let mut out = Vec::new();
+        out.try_reserve_exact(n)
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        for i in 0..n {
+            let v = p.add(i).read_unaligned();
+            out.push(u32::try_from(v).map_err(|_| Error::InvalidArgument)?);
+        }
+        Ok(out)
     }
-    let mut out = Vec::new();
-    out.try_reserve_exact(n)
-        .map_err(|_| Error::ModelOutOfMemory)?;
-    for i in 0..n {
-        let v = p.add(i).read_unaligned();
-        out.push(u32::try_from(v).map_err(|_| Error::InvalidArgument)?);
-    }
-    Ok(out)
 }
 
 /// Builds a model with `make` and hands it to C through `out` (NULL there on any error).
@@ -156,16 +162,19 @@ unsafe fn create(
     out: *mut *mut pqp_convex_model,
     make: impl FnOnce() -> Result<ConvexModel, Error>,
 ) -> Result<(), Error> {
-    if out.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if out.is_null() {
+            return Err(Error::NullPointer);
+        }
+        out.write(ptr::null_mut());
+        let h = into_handle(pqp_convex_model { model: make()? });
+        if h.is_null() {
+            return Err(Error::ModelOutOfMemory);
+        }
+        out.write(h);
+        Ok(())
     }
-    out.write(ptr::null_mut());
-    let h = into_handle(pqp_convex_model { model: make()? });
-    if h.is_null() {
-        return Err(Error::ModelOutOfMemory);
-    }
-    out.write(h);
-    Ok(())
 }
 
 /// After an internal fault in a create function: C sees NULL. (A handle is written only as the
@@ -174,8 +183,11 @@ unsafe fn create(
 /// # Safety
 /// As [`create`].
 unsafe fn clear_out(out: *mut *mut pqp_convex_model) {
-    if !out.is_null() {
-        out.write(ptr::null_mut());
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if !out.is_null() {
+            out.write(ptr::null_mut());
+        }
     }
 }
 
@@ -197,21 +209,24 @@ unsafe fn clear_out(out: *mut *mut pqp_convex_model) {
 ///         distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY if the
 ///         model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_from_points(
     out: *mut *mut pqp_convex_model,
     xyz: *const f64,
     n: c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear_out(out),
-        || {
-            code(create(out, || {
-                ConvexModel::from_points(&read_points(xyz, n)?)
-            }))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            PQP_ERR_INTERNAL,
+            || clear_out(out),
+            || {
+                code(create(out, || {
+                    ConvexModel::from_points(&read_points(xyz, n)?)
+                }))
+            },
+        )
+    }
 }
 
 /// Creates a convex model from a closed convex triangle mesh, verified exactly.
@@ -234,7 +249,7 @@ pub unsafe extern "C" fn pqp_convex_model_from_points(
 ///         inconsistently oriented, inside out, not convex, flat, an unused vertex, fewer than 4
 ///         vertices or faces); PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_from_triangles(
     out: *mut *mut pqp_convex_model,
     xyz: *const f64,
@@ -242,19 +257,22 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
     triangles: *const c_int,
     num_triangles: c_int,
 ) -> c_int {
-    let make = || {
-        let v = read_points(xyz, num_vertices)?;
-        let nt = length(num_triangles)?;
-        let n = nt.checked_mul(3).ok_or(Error::InvalidArgument)?;
-        let idx = read_indices(triangles, n)?;
-        let counts = vec![3u32; nt];
-        ConvexModel::from_polygons(&v, &counts, &idx)
-    };
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear_out(out),
-        || code(create(out, make)),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let make = || {
+            let v = read_points(xyz, num_vertices)?;
+            let nt = length(num_triangles)?;
+            let n = nt.checked_mul(3).ok_or(Error::InvalidArgument)?;
+            let idx = read_indices(triangles, n)?;
+            let counts = vec![3u32; nt];
+            ConvexModel::from_polygons(&v, &counts, &idx)
+        };
+        boundary(
+            PQP_ERR_INTERNAL,
+            || clear_out(out),
+            || code(create(out, make)),
+        )
+    }
 }
 
 /// Creates a convex model from a closed convex polyhedral mesh (polygon faces), verified exactly.
@@ -278,7 +296,7 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
 ///         pqp_convex_model_from_triangles, or a face not planar or not strictly convex);
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_from_polygons(
     out: *mut *mut pqp_convex_model,
     xyz: *const f64,
@@ -288,25 +306,28 @@ pub unsafe extern "C" fn pqp_convex_model_from_polygons(
     indices: *const c_int,
     num_indices: c_int,
 ) -> c_int {
-    let make = || {
-        let v = read_points(xyz, num_vertices)?;
-        let counts = read_indices(counts, length(num_faces)?)?;
-        if indices.is_null() {
-            return Err(Error::NullPointer);
-        }
-        let ni = length(num_indices)?;
-        let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
-        if total != ni as u64 {
-            return Err(Error::InvalidArgument);
-        }
-        let idx = read_indices(indices, ni)?;
-        ConvexModel::from_polygons(&v, &counts, &idx)
-    };
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear_out(out),
-        || code(create(out, make)),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let make = || {
+            let v = read_points(xyz, num_vertices)?;
+            let counts = read_indices(counts, length(num_faces)?)?;
+            if indices.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let ni = length(num_indices)?;
+            let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+            if total != ni as u64 {
+                return Err(Error::InvalidArgument);
+            }
+            let idx = read_indices(indices, ni)?;
+            ConvexModel::from_polygons(&v, &counts, &idx)
+        };
+        boundary(
+            PQP_ERR_INTERNAL,
+            || clear_out(out),
+            || code(create(out, make)),
+        )
+    }
 }
 
 /// Frees a convex model.
@@ -314,9 +335,10 @@ pub unsafe extern "C" fn pqp_convex_model_from_polygons(
 /// @param m  a model from a pqp_convex_model_from_ function, or NULL (then nothing happens). It
 ///           must not be used afterwards. Caches that saw it may be kept: they ignore it.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_destroy(m: *mut pqp_convex_model) {
-    boundary((), || {}, || free_handle(m))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary((), || {}, || free_handle(m)) }
 }
 
 /// A model's count of one feature kind as a C int (models have at most 2^30 vertices, so the
@@ -325,7 +347,8 @@ unsafe fn feature_count(
     m: *const pqp_convex_model,
     f: impl FnOnce(&ConvexModel) -> usize,
 ) -> c_int {
-    deref(m).map_or(0, |m| c_int::try_from(f(&m.model)).unwrap_or(c_int::MAX))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { deref(m).map_or(0, |m| c_int::try_from(f(&m.model)).unwrap_or(c_int::MAX)) }
 }
 
 /// The number of vertices of a convex model (the hull's corners).
@@ -333,9 +356,10 @@ unsafe fn feature_count(
 /// @param m  the model, or NULL.
 /// @return the count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_num_vertices(m: *const pqp_convex_model) -> c_int {
-    boundary(0, || {}, || feature_count(m, ConvexModel::num_vertices))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary(0, || {}, || feature_count(m, ConvexModel::num_vertices)) }
 }
 
 /// The number of edges of a convex model.
@@ -343,9 +367,10 @@ pub unsafe extern "C" fn pqp_convex_model_num_vertices(m: *const pqp_convex_mode
 /// @param m  the model, or NULL.
 /// @return the count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_num_edges(m: *const pqp_convex_model) -> c_int {
-    boundary(0, || {}, || feature_count(m, ConvexModel::num_edges))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary(0, || {}, || feature_count(m, ConvexModel::num_edges)) }
 }
 
 /// The number of faces of a convex model (coplanar triangles merged: each face is a strictly
@@ -354,9 +379,10 @@ pub unsafe extern "C" fn pqp_convex_model_num_edges(m: *const pqp_convex_model) 
 /// @param m  the model, or NULL.
 /// @return the count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_num_faces(m: *const pqp_convex_model) -> c_int {
-    boundary(0, || {}, || feature_count(m, ConvexModel::num_faces))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary(0, || {}, || feature_count(m, ConvexModel::num_faces)) }
 }
 
 /// An index from C checked against a count.
@@ -375,21 +401,24 @@ fn index(i: c_int, n: usize) -> Result<usize, Error> {
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m or xyz is NULL; PQP_ERR_INVALID_ARGUMENT if i is out
 ///         of range (xyz is then not written); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_vertex(
     m: *const pqp_convex_model,
     i: c_int,
     xyz: *mut f64,
 ) -> c_int {
-    status(|| {
-        let m = &deref(m)?.model;
-        if xyz.is_null() {
-            return Err(Error::NullPointer);
-        }
-        let v = m.vertex(index(i, m.num_vertices())?);
-        xyz.cast::<[f64; 3]>().write_unaligned(arr(&v));
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = &deref(m)?.model;
+            if xyz.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let v = m.vertex(index(i, m.num_vertices())?);
+            xyz.cast::<[f64; 3]>().write_unaligned(arr(&v));
+            Ok(())
+        })
+    }
 }
 
 /// The input point a vertex of a convex model came from.
@@ -399,22 +428,25 @@ pub unsafe extern "C" fn pqp_convex_model_vertex(
 /// @return the index of the point (for pqp_convex_model_from_points, the first of equal points)
 ///         or mesh vertex it is; -1 if m is NULL or i is out of range.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_vertex_source(
     m: *const pqp_convex_model,
     i: c_int,
 ) -> c_int {
-    boundary(
-        -1,
-        || {},
-        || {
-            let Ok(m) = deref(m) else { return -1 };
-            index(i, m.model.num_vertices())
-                .ok()
-                .and_then(|i| c_int::try_from(m.model.vertex_source(i)).ok())
-                .unwrap_or(-1)
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            -1,
+            || {},
+            || {
+                let Ok(m) = deref(m) else { return -1 };
+                index(i, m.model.num_vertices())
+                    .ok()
+                    .and_then(|i| c_int::try_from(m.model.vertex_source(i)).ok())
+                    .unwrap_or(-1)
+            },
+        )
+    }
 }
 
 /// The end vertices of an edge of a convex model.
@@ -426,24 +458,27 @@ pub unsafe extern "C" fn pqp_convex_model_vertex_source(
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, tail or head is NULL; PQP_ERR_INVALID_ARGUMENT if i
 ///         is out of range (nothing is written); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_edge(
     m: *const pqp_convex_model,
     i: c_int,
     tail: *mut c_int,
     head: *mut c_int,
 ) -> c_int {
-    status(|| {
-        let m = &deref(m)?.model;
-        if tail.is_null() || head.is_null() {
-            return Err(Error::NullPointer);
-        }
-        let (t, h) = m.edge(index(i, m.num_edges())?);
-        // Vertex indices are below 2^30.
-        tail.write_unaligned(t as c_int);
-        head.write_unaligned(h as c_int);
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = &deref(m)?.model;
+            if tail.is_null() || head.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let (t, h) = m.edge(index(i, m.num_edges())?);
+            // Vertex indices are below 2^30.
+            tail.write_unaligned(t as c_int);
+            head.write_unaligned(h as c_int);
+            Ok(())
+        })
+    }
 }
 
 /// The number of vertices (= edges) of a face of a convex model.
@@ -452,19 +487,22 @@ pub unsafe extern "C" fn pqp_convex_model_edge(
 /// @param i  the face index.
 /// @return the count (>= 3); 0 if m is NULL or i is out of range.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_face_num_vertices(
     m: *const pqp_convex_model,
     i: c_int,
 ) -> c_int {
-    boundary(
-        0,
-        || {},
-        || {
-            let Ok(m) = deref(m) else { return 0 };
-            index(i, m.model.num_faces()).map_or(0, |i| m.model.face(i).len() as c_int)
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            0,
+            || {},
+            || {
+                let Ok(m) = deref(m) else { return 0 };
+                index(i, m.model.num_faces()).map_or(0, |i| m.model.face(i).len() as c_int)
+            },
+        )
+    }
 }
 
 /// The vertices of a face of a convex model, counter-clockwise seen from outside.
@@ -475,22 +513,25 @@ pub unsafe extern "C" fn pqp_convex_model_face_num_vertices(
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m or vertices is NULL; PQP_ERR_INVALID_ARGUMENT if i is
 ///         out of range (nothing is written); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_face(
     m: *const pqp_convex_model,
     i: c_int,
     vertices: *mut c_int,
 ) -> c_int {
-    status(|| {
-        let m = &deref(m)?.model;
-        if vertices.is_null() {
-            return Err(Error::NullPointer);
-        }
-        for (k, &v) in m.face(index(i, m.num_faces())?).iter().enumerate() {
-            vertices.add(k).write_unaligned(v as c_int);
-        }
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = &deref(m)?.model;
+            if vertices.is_null() {
+                return Err(Error::NullPointer);
+            }
+            for (k, &v) in m.face(index(i, m.num_faces())?).iter().enumerate() {
+                vertices.add(k).write_unaligned(v as c_int);
+            }
+            Ok(())
+        })
+    }
 }
 
 /// Creates an empty pair cache (the first query with it starts cold).
@@ -498,7 +539,7 @@ pub unsafe extern "C" fn pqp_convex_model_face(
 /// @return a new cache, to be freed with pqp_convex_cache_destroy; NULL only if memory could not
 ///         be allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_convex_cache_create() -> *mut pqp_convex_cache {
     boundary(
         ptr::null_mut(),
@@ -511,9 +552,10 @@ pub extern "C" fn pqp_convex_cache_create() -> *mut pqp_convex_cache {
 ///
 /// @param c  a cache from pqp_convex_cache_create, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using c.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_cache_destroy(c: *mut pqp_convex_cache) {
-    boundary((), || {}, || free_handle(c))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary((), || {}, || free_handle(c)) }
 }
 
 /// Empties a pair cache: the next query with it starts cold.
@@ -521,12 +563,15 @@ pub unsafe extern "C" fn pqp_convex_cache_destroy(c: *mut pqp_convex_cache) {
 /// @param c  the cache.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if c is NULL; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using c.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_cache_clear(c: *mut pqp_convex_cache) -> c_int {
-    status(|| {
-        deref_mut(c)?.cache.clear();
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            deref_mut(c)?.cache.clear();
+            Ok(())
+        })
+    }
 }
 
 /// Creates an empty convex result (distance +infinity, no feature pair, depth NaN).
@@ -534,7 +579,7 @@ pub unsafe extern "C" fn pqp_convex_cache_clear(c: *mut pqp_convex_cache) -> c_i
 /// @return a new result, to be freed with pqp_convex_result_destroy; NULL only if memory could not
 ///         be allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_convex_result_create() -> *mut pqp_convex_result {
     boundary(
         ptr::null_mut(),
@@ -547,9 +592,10 @@ pub extern "C" fn pqp_convex_result_create() -> *mut pqp_convex_result {
 ///
 /// @param r  a result from pqp_convex_result_create, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_destroy(r: *mut pqp_convex_result) {
-    boundary((), || {}, || free_handle(r))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary((), || {}, || free_handle(r)) }
 }
 
 /// The two posed models and the cache of a query, read from C.
@@ -572,13 +618,16 @@ unsafe fn query<'a>(
     m2: *const pqp_convex_model,
     cache: *mut pqp_convex_cache,
 ) -> Result<Query<'a>, Error> {
-    Ok(Query {
-        pose1: read_pose(R1, T1)?,
-        m1: &deref(m1)?.model,
-        pose2: read_pose(R2, T2)?,
-        m2: &deref(m2)?.model,
-        cache: cache.as_mut().map(|c| &mut c.cache),
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        Ok(Query {
+            pose1: read_pose(R1, T1)?,
+            m1: &deref(m1)?.model,
+            pose2: read_pose(R2, T2)?,
+            m2: &deref(m2)?.model,
+            cache: cache.as_mut().map(|c| &mut c.cache),
+        })
+    }
 }
 
 /// Computes the separation distance of two posed convex models, their closest points and closest
@@ -605,7 +654,7 @@ unsafe fn query<'a>(
 ///         state and the cache is left as it was). On any other error r and cache are unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                r and cache must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_distance(
     r: *mut pqp_convex_result,
     R1: *const f64,
@@ -616,14 +665,17 @@ pub unsafe extern "C" fn pqp_convex_distance(
     m2: *const pqp_convex_model,
     cache: *mut pqp_convex_cache,
 ) -> c_int {
-    let body = || -> Result<(), Error> {
-        let result = deref_mut(r)?;
-        let q = query(R1, T1, m1, R2, T2, m2, cache)?;
-        let d = convex_distance(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
-        *result = pqp_convex_result::from_distance(&d);
-        Ok(())
-    };
-    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let body = || -> Result<(), Error> {
+            let result = deref_mut(r)?;
+            let q = query(R1, T1, m1, R2, T2, m2, cache)?;
+            let d = convex_distance(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
+            *result = pqp_convex_result::from_distance(&d);
+            Ok(())
+        };
+        boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    }
 }
 
 /// Whether two posed convex models touch or overlap (V-Clip, as pqp_convex_distance).
@@ -639,7 +691,7 @@ pub unsafe extern "C" fn pqp_convex_distance(
 ///         internal fault (the cache is then left as it was).
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                cache must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_intersect(
     intersecting: *mut c_int,
     R1: *const f64,
@@ -650,15 +702,18 @@ pub unsafe extern "C" fn pqp_convex_intersect(
     m2: *const pqp_convex_model,
     cache: *mut pqp_convex_cache,
 ) -> c_int {
-    status(|| {
-        if intersecting.is_null() {
-            return Err(Error::NullPointer);
-        }
-        let q = query(R1, T1, m1, R2, T2, m2, cache)?;
-        let d = convex_distance(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
-        intersecting.write_unaligned(c_int::from(d.intersecting));
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            if intersecting.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let q = query(R1, T1, m1, R2, T2, m2, cache)?;
+            let d = convex_distance(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
+            intersecting.write_unaligned(c_int::from(d.intersecting));
+            Ok(())
+        })
+    }
 }
 
 /// Computes the penetration depth and direction of two posed convex models: the length and
@@ -682,7 +737,7 @@ pub unsafe extern "C" fn pqp_convex_intersect(
 ///         cache are unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                r and cache must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_penetration(
     r: *mut pqp_convex_result,
     R1: *const f64,
@@ -693,23 +748,17 @@ pub unsafe extern "C" fn pqp_convex_penetration(
     m2: *const pqp_convex_model,
     cache: *mut pqp_convex_cache,
 ) -> c_int {
-    let body = || -> Result<(), Error> {
-        let result = deref_mut(r)?;
-        let q = query(R1, T1, m1, R2, T2, m2, cache)?;
-        let p = convex_penetration(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
-        *result = pqp_convex_result::from_penetration(&p);
-        Ok(())
-    };
-    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
-}
-
-/// A getter over a result: `get` on the result, `fallback` for NULL.
-unsafe fn get<T>(
-    r: *const pqp_convex_result,
-    fallback: T,
-    get: impl FnOnce(&pqp_convex_result) -> T,
-) -> T {
-    deref(r).map_or(fallback, get)
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let body = || -> Result<(), Error> {
+            let result = deref_mut(r)?;
+            let q = query(R1, T1, m1, R2, T2, m2, cache)?;
+            let p = convex_penetration(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
+            *result = pqp_convex_result::from_penetration(&p);
+            Ok(())
+        };
+        boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    }
 }
 
 /// The distance the last query on r found (0 when the models touch or overlap).
@@ -717,9 +766,10 @@ unsafe fn get<T>(
 /// @param r  the result, or NULL.
 /// @return the distance; +infinity before any query; NaN if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_distance(r: *const pqp_convex_result) -> f64 {
-    boundary(f64::NAN, || {}, || get(r, f64::NAN, |r| r.distance))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, f64::NAN, |r| r.distance) }
 }
 
 /// The closest point on model 1 found by the last query on r, in model 1's frame. When the models
@@ -729,13 +779,10 @@ pub unsafe extern "C" fn pqp_convex_result_distance(r: *const pqp_convex_result)
 /// @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
 ///         query; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_p1(r: *const pqp_convex_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || get(r, ptr::null(), |r| r.p1.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.p1.as_ptr()) }
 }
 
 /// The closest point on model 2 found by the last query on r, in model 2's frame.
@@ -744,13 +791,10 @@ pub unsafe extern "C" fn pqp_convex_result_p1(r: *const pqp_convex_result) -> *c
 /// @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
 ///         query; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_p2(r: *const pqp_convex_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || get(r, ptr::null(), |r| r.p2.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.p2.as_ptr()) }
 }
 
 /// Whether the last query on r found the models touching or overlapping.
@@ -758,9 +802,10 @@ pub unsafe extern "C" fn pqp_convex_result_p2(r: *const pqp_convex_result) -> *c
 /// @param r  the result, or NULL.
 /// @return 1 if they touch or overlap, else 0 (also before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_intersecting(r: *const pqp_convex_result) -> c_int {
-    boundary(0, || {}, || get(r, 0, |r| c_int::from(r.intersecting)))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| c_int::from(r.intersecting)) }
 }
 
 /// The kind of model 1's feature in the final feature pair of the last query on r (the closest
@@ -770,13 +815,10 @@ pub unsafe extern "C" fn pqp_convex_result_intersecting(r: *const pqp_convex_res
 /// @return PQP_CONVEX_VERTEX, PQP_CONVEX_EDGE or PQP_CONVEX_FACE; -1 before any query or if r is
 ///         NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_feature1_kind(r: *const pqp_convex_result) -> c_int {
-    boundary(
-        -1,
-        || {},
-        || get(r, -1, |r| r.features.map_or(-1, |f| f.0.kind as c_int)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.features.map_or(-1, |f| f.0.kind as c_int)) }
 }
 
 /// The index of model 1's feature in the final feature pair of the last query on r, among model
@@ -785,13 +827,10 @@ pub unsafe extern "C" fn pqp_convex_result_feature1_kind(r: *const pqp_convex_re
 /// @param r  the result, or NULL.
 /// @return the index; -1 before any query or if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_feature1_index(r: *const pqp_convex_result) -> c_int {
-    boundary(
-        -1,
-        || {},
-        || get(r, -1, |r| r.features.map_or(-1, |f| f.0.index as c_int)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.features.map_or(-1, |f| f.0.index as c_int)) }
 }
 
 /// The kind of model 2's feature in the final feature pair of the last query on r (it contains p2
@@ -801,13 +840,10 @@ pub unsafe extern "C" fn pqp_convex_result_feature1_index(r: *const pqp_convex_r
 /// @return PQP_CONVEX_VERTEX, PQP_CONVEX_EDGE or PQP_CONVEX_FACE; -1 before any query or if r is
 ///         NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_feature2_kind(r: *const pqp_convex_result) -> c_int {
-    boundary(
-        -1,
-        || {},
-        || get(r, -1, |r| r.features.map_or(-1, |f| f.1.kind as c_int)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.features.map_or(-1, |f| f.1.kind as c_int)) }
 }
 
 /// The index of model 2's feature in the final feature pair of the last query on r.
@@ -815,13 +851,10 @@ pub unsafe extern "C" fn pqp_convex_result_feature2_kind(r: *const pqp_convex_re
 /// @param r  the result, or NULL.
 /// @return the index; -1 before any query or if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_feature2_index(r: *const pqp_convex_result) -> c_int {
-    boundary(
-        -1,
-        || {},
-        || get(r, -1, |r| r.features.map_or(-1, |f| f.1.index as c_int)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.features.map_or(-1, |f| f.1.index as c_int)) }
 }
 
 /// The penetration depth found by the last pqp_convex_penetration on r: the length of the smallest
@@ -831,9 +864,10 @@ pub unsafe extern "C" fn pqp_convex_result_feature2_index(r: *const pqp_convex_r
 /// @return the depth; NaN before any query, after pqp_convex_distance (which does not compute it),
 ///         or if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_depth(r: *const pqp_convex_result) -> f64 {
-    boundary(f64::NAN, || {}, || get(r, f64::NAN, |r| r.depth))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, f64::NAN, |r| r.depth) }
 }
 
 /// The penetration direction found by the last pqp_convex_penetration on r: the unit vector, in
@@ -845,13 +879,10 @@ pub unsafe extern "C" fn pqp_convex_result_depth(r: *const pqp_convex_result) ->
 ///         query, after pqp_convex_distance, or when the models are apart at distance 0; NULL if r
 ///         is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_normal(r: *const pqp_convex_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || get(r, ptr::null(), |r| r.normal.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.normal.as_ptr()) }
 }
 
 /// The deepest point of model 1 found by the last pqp_convex_penetration on r, in model 1's
@@ -862,13 +893,10 @@ pub unsafe extern "C" fn pqp_convex_result_normal(r: *const pqp_convex_result) -
 /// @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
 ///         query or after pqp_convex_distance; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_deepest_p1(r: *const pqp_convex_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || get(r, ptr::null(), |r| r.deepest[0].as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.deepest[0].as_ptr()) }
 }
 
 /// The deepest point of model 2 found by the last pqp_convex_penetration on r, in model 2's frame
@@ -878,13 +906,10 @@ pub unsafe extern "C" fn pqp_convex_result_deepest_p1(r: *const pqp_convex_resul
 /// @return 3 doubles, owned by r and valid until r is modified or destroyed; (0, 0, 0) before any
 ///         query or after pqp_convex_distance; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_deepest_p2(r: *const pqp_convex_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || get(r, ptr::null(), |r| r.deepest[1].as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.deepest[1].as_ptr()) }
 }
 
 /// The number of V-Clip iterations (feature-pair steps) the last query on r took: small and nearly
@@ -893,13 +918,10 @@ pub unsafe extern "C" fn pqp_convex_result_deepest_p2(r: *const pqp_convex_resul
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_num_iterations(r: *const pqp_convex_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || get(r, 0, |r| count(u64::from(r.stats.iterations))),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(u64::from(r.stats.iterations))) }
 }
 
 /// The number of local-minimum escapes (a vertex below a face's plane, resolved by a scan of the
@@ -908,11 +930,8 @@ pub unsafe extern "C" fn pqp_convex_result_num_iterations(r: *const pqp_convex_r
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_num_local_minima(r: *const pqp_convex_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || get(r, 0, |r| count(u64::from(r.stats.local_minima))),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(u64::from(r.stats.local_minima))) }
 }

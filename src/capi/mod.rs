@@ -52,7 +52,7 @@ pub use tolerance::*;
 
 use crate::error::Error;
 use crate::math::Pose;
-use crate::query::{Search, Stats, Strategy};
+use crate::query::{Search, Strategy};
 use std::cell::Cell;
 use std::ffi::c_int;
 use std::panic::{self, AssertUnwindSafe};
@@ -213,7 +213,8 @@ pub(crate) fn into_handle<T>(value: T) -> *mut T {
 /// `h` is NULL or a pointer returned by `into_handle::<T>` not freed before.
 pub(crate) unsafe fn free_handle<T>(h: *mut T) {
     if !h.is_null() {
-        drop(Box::from_raw(h));
+        // SAFETY: `h` came from `into_handle::<T>` (a `Box<T>` allocation) and is freed once.
+        drop(unsafe { Box::from_raw(h) });
     }
 }
 
@@ -222,7 +223,8 @@ pub(crate) unsafe fn free_handle<T>(h: *mut T) {
 /// # Safety
 /// `h` is NULL or a live handle (the caller's contract, see the header).
 pub(crate) unsafe fn deref<'a, T>(h: *const T) -> Result<&'a T, Error> {
-    h.as_ref().ok_or(Error::NullPointer)
+    // SAFETY: `h` is NULL (then `as_ref` gives `None`) or a live handle.
+    unsafe { h.as_ref() }.ok_or(Error::NullPointer)
 }
 
 /// The object behind a handle for modification, or `Err(NullPointer)`.
@@ -230,7 +232,8 @@ pub(crate) unsafe fn deref<'a, T>(h: *const T) -> Result<&'a T, Error> {
 /// # Safety
 /// As [`deref`], and no other reference to the object is alive (the caller's contract).
 pub(crate) unsafe fn deref_mut<'a, T>(h: *mut T) -> Result<&'a mut T, Error> {
-    h.as_mut().ok_or(Error::NullPointer)
+    // SAFETY: `h` is NULL or a live handle with no other reference to its object.
+    unsafe { h.as_mut() }.ok_or(Error::NullPointer)
 }
 
 /// Copies `N` doubles from C, or `Err(NullPointer)`.
@@ -242,7 +245,8 @@ pub(crate) unsafe fn read_doubles<const N: usize>(p: *const f64) -> Result<[f64;
         return Err(Error::NullPointer);
     }
     // C arrays of double are aligned, but nothing is lost by not relying on it.
-    Ok(p.cast::<[f64; N]>().read_unaligned())
+    // SAFETY: `p` is not NULL, so it points to `N` readable doubles.
+    Ok(unsafe { p.cast::<[f64; N]>().read_unaligned() })
 }
 
 /// A pose from C: `r` 9 doubles row by row, `t` 3 doubles.
@@ -250,8 +254,8 @@ pub(crate) unsafe fn read_doubles<const N: usize>(p: *const f64) -> Result<[f64;
 /// # Safety
 /// Each pointer is NULL or points to that many doubles.
 pub(crate) unsafe fn read_pose(r: *const f64, t: *const f64) -> Result<Pose, Error> {
-    let r: [f64; 9] = read_doubles(r)?;
-    let t: [f64; 3] = read_doubles(t)?;
+    // SAFETY: `r` is NULL or points to 9 doubles, `t` NULL or to 3.
+    let (r, t): ([f64; 9], [f64; 3]) = unsafe { (read_doubles(r)?, read_doubles(t)?) };
     Ok(Pose::new(
         [[r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]],
         t,
@@ -283,7 +287,8 @@ pub(crate) fn default_search(qsize: c_int) -> Result<Search, Error> {
 /// # Safety
 /// `o` is NULL or points to a `pqp_search_options`.
 pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search, Error> {
-    let Some(o) = o.as_ref() else {
+    // SAFETY: `o` is NULL or points to a `pqp_search_options`.
+    let Some(o) = (unsafe { o.as_ref() }) else {
         return Ok(Search::default());
     };
     let strategy = match o.strategy {
@@ -315,17 +320,10 @@ pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search,
 /// # Safety
 /// `r` is NULL or a live handle.
 pub(crate) unsafe fn reset<T: Default>(r: *mut T) {
-    if let Ok(r) = deref_mut(r) {
+    // SAFETY: `r` is NULL or a live handle (this function's contract).
+    if let Ok(r) = unsafe { deref_mut(r) } {
         *r = T::default();
     }
-}
-
-/// The work counters of a result, for the statistics getters; `None` for NULL.
-///
-/// # Safety
-/// `r` is NULL or a live handle of its kind.
-pub(crate) unsafe fn stat<T>(r: *const T, get: impl FnOnce(&T) -> Stats) -> Option<Stats> {
-    deref(r).ok().map(get)
 }
 
 /// Writes a triangle pair to C, or `Err(NullPointer)` (writing nothing) if a pointer is NULL.
@@ -341,9 +339,26 @@ pub(crate) unsafe fn write_pair(
     if t1.is_null() || t2.is_null() {
         return Err(Error::NullPointer);
     }
-    t1.write(a);
-    t2.write(b);
+    // SAFETY: neither pointer is NULL, so both are writable (this function's contract).
+    unsafe {
+        t1.write(a);
+        t2.write(b);
+    }
     Ok(())
+}
+
+/// Runs a result getter: inside [`boundary`], `get` of the object behind `r`, or `fallback` when
+/// `r` is NULL (or `get` panics). Every `pqp_*_result_*` getter is one call of this.
+///
+/// # Safety
+/// `r` is NULL or a live handle of its kind, not modified during the call.
+pub(crate) unsafe fn getter<T, V: Copy>(r: *const T, fallback: V, get: impl FnOnce(&T) -> V) -> V {
+    boundary(
+        fallback,
+        || {},
+        // SAFETY: `r` is NULL or a live handle (this function's contract).
+        || unsafe { deref(r) }.map_or(fallback, get),
+    )
 }
 
 /// A counter for C's `int64_t` (saturating; no query performs 2^63 tests).
