@@ -5,7 +5,7 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, getter, into_handle, pqp_model,
+    boundary, code, count, deref, deref_mut, destroy_handle, getter, new_handle, pqp_model,
     read_pose, reset, PQP_ALL_CONTACTS, PQP_ERR_INTERNAL, PQP_FIRST_CONTACT,
 };
 use crate::error::Error;
@@ -48,15 +48,7 @@ pub struct pqp_collide_result {
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub extern "C" fn pqp_collide_result_create() -> *mut pqp_collide_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || {
-            into_handle(pqp_collide_result {
-                result: CollideResult::new(),
-            })
-        },
-    )
+    new_handle::<pqp_collide_result>()
 }
 
 /// Frees a collision result.
@@ -65,8 +57,8 @@ pub extern "C" fn pqp_collide_result_create() -> *mut pqp_collide_result {
 /// Thread safety: must not run concurrently with any other call using r.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_destroy(r: *mut pqp_collide_result) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(r)) }
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Finds the colliding triangle pairs of two posed models (PQP_Collide).

@@ -8,8 +8,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep the names the rest of the header uses.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, getter, into_handle, read_doubles,
-    read_pose, reset, status, PQP_ERR_INTERNAL,
+    boundary, code, count, deref, deref_mut, destroy_handle, getter, into_handle, new_handle,
+    read_doubles, read_pose, reset, status, PQP_ERR_INTERNAL,
 };
 use crate::convex::{
     convex_distance, convex_penetration, ConvexDistance, ConvexModel, ConvexPairCache,
@@ -337,8 +337,8 @@ pub unsafe extern "C" fn pqp_convex_model_from_polygons(
 /// Thread safety: must not run concurrently with any other call using m.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_destroy(m: *mut pqp_convex_model) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(m)) }
+    // SAFETY: m is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(m) }
 }
 
 /// A model's count of one feature kind as a C int (models have at most 2^30 vertices, so the
@@ -541,11 +541,7 @@ pub unsafe extern "C" fn pqp_convex_model_face(
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub extern "C" fn pqp_convex_cache_create() -> *mut pqp_convex_cache {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_convex_cache::default()),
-    )
+    new_handle::<pqp_convex_cache>()
 }
 
 /// Frees a pair cache.
@@ -554,8 +550,8 @@ pub extern "C" fn pqp_convex_cache_create() -> *mut pqp_convex_cache {
 /// Thread safety: must not run concurrently with any other call using c.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_cache_destroy(c: *mut pqp_convex_cache) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(c)) }
+    // SAFETY: c is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(c) }
 }
 
 /// Empties a pair cache: the next query with it starts cold.
@@ -581,11 +577,7 @@ pub unsafe extern "C" fn pqp_convex_cache_clear(c: *mut pqp_convex_cache) -> c_i
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub extern "C" fn pqp_convex_result_create() -> *mut pqp_convex_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_convex_result::default()),
-    )
+    new_handle::<pqp_convex_result>()
 }
 
 /// Frees a convex result.
@@ -594,8 +586,8 @@ pub extern "C" fn pqp_convex_result_create() -> *mut pqp_convex_result {
 /// Thread safety: must not run concurrently with any other call using r.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_result_destroy(r: *mut pqp_convex_result) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(r)) }
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// The two posed models and the cache of a query, read from C.

@@ -5,12 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, default_search, deref, deref_mut, free_handle, getter, into_handle,
-    pqp_model, pqp_search_options, read_pose, read_search, reset, status, write_pair, PosedModel,
-    DEFAULT_SEARCH_OPTIONS, PQP_ERR_INTERNAL,
+    boundary, count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model,
+    pqp_search_options, status, write_pair, PosedModel, SearchArg, DEFAULT_SEARCH_OPTIONS,
 };
-use crate::error::Error;
-use crate::query::{distance_into, DistanceOptions, DistanceResult, Search};
+use crate::query::{distance_into, DistanceOptions, DistanceResult};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -29,11 +27,7 @@ pub struct pqp_distance_result {
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub extern "C" fn pqp_distance_result_create() -> *mut pqp_distance_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_distance_result::default()),
-    )
+    new_handle::<pqp_distance_result>()
 }
 
 /// Frees a distance result.
@@ -42,8 +36,8 @@ pub extern "C" fn pqp_distance_result_create() -> *mut pqp_distance_result {
 /// Thread safety: must not run concurrently with any other call using r.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(r)) }
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Computes the separation distance of two posed models and a closest pair of points
@@ -90,19 +84,13 @@ pub unsafe extern "C" fn pqp_distance(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || reset(r),
-            || {
-                code(distance_with(
-                    r,
-                    (R1, T1, m1),
-                    (R2, T2, m2),
-                    rel_err,
-                    abs_err,
-                    default_search(qsize),
-                ))
-            },
+        distance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            rel_err,
+            abs_err,
+            SearchArg::QueueSize(qsize),
         )
     }
 }
@@ -136,50 +124,39 @@ pub unsafe extern "C" fn pqp_distance_search(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || reset(r),
-            || {
-                code(distance_with(
-                    r,
-                    (R1, T1, m1),
-                    (R2, T2, m2),
-                    rel_err,
-                    abs_err,
-                    read_search(options),
-                ))
-            },
+        distance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            rel_err,
+            abs_err,
+            SearchArg::Options(options),
         )
     }
 }
 
-/// The body of pqp_distance and pqp_distance_search.
-unsafe fn distance_with(
+/// The body of pqp_distance and pqp_distance_search, which differ in how they give the search.
+///
+/// # Safety
+/// As the entry points': every pointer NULL or valid as the header requires.
+unsafe fn distance_query(
     r: *mut pqp_distance_result,
-    (R1, T1, m1): PosedModel,
-    (R2, T2, m2): PosedModel,
+    one: PosedModel,
+    two: PosedModel,
     rel_err: f64,
     abs_err: f64,
-    search: Result<Search, Error>,
-) -> Result<(), Error> {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    search: SearchArg,
+) -> c_int {
+    // SAFETY: the pointers are as pair_query requires (this function's contract).
     unsafe {
-        let result = deref_mut(r)?;
-        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-        let options = DistanceOptions {
-            rel_err,
-            abs_err,
-            search: search?,
-        };
-        distance_into(
-            &mut result.result,
-            &m1.model,
-            &pose1,
-            &m2.model,
-            &pose2,
-            &options,
-        )
+        pair_query(r, one, two, search, |r, q| {
+            let options = DistanceOptions {
+                rel_err,
+                abs_err,
+                search: q.search,
+            };
+            distance_into(&mut r.result, q.m1, &q.pose1, q.m2, &q.pose2, &options)
+        })
     }
 }
 

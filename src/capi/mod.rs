@@ -52,6 +52,7 @@ pub use tolerance::*;
 
 use crate::error::Error;
 use crate::math::Pose;
+use crate::model::Model;
 use crate::query::{Search, Strategy};
 use std::cell::Cell;
 use std::ffi::c_int;
@@ -207,6 +208,21 @@ pub(crate) fn into_handle<T>(value: T) -> *mut T {
     p
 }
 
+/// The body of every `pqp_*_create` of a result or cache: a fresh object's handle, NULL if
+/// memory could not be allocated.
+pub(crate) fn new_handle<T: Default>() -> *mut T {
+    boundary(std::ptr::null_mut(), || {}, || into_handle(T::default()))
+}
+
+/// The body of every `pqp_*_destroy`: frees the handle; NULL is accepted and ignored.
+///
+/// # Safety
+/// As [`free_handle`].
+pub(crate) unsafe fn destroy_handle<T>(h: *mut T) {
+    // SAFETY: `h` is NULL or a handle of `T` not freed before (this function's contract).
+    boundary((), || {}, || unsafe { free_handle(h) })
+}
+
 /// Frees a handle made by [`into_handle`]; NULL is accepted and ignored.
 ///
 /// # Safety
@@ -269,19 +285,6 @@ pub(crate) const DEFAULT_SEARCH_OPTIONS: pqp_search_options = pqp_search_options
     triangle_cache: 1,
 };
 
-/// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
-pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
-
-/// The search of pqp_distance and pqp_tolerance, given PQP's queue size (at least 1): the default
-/// search; the size is only checked.
-pub(crate) fn default_search(qsize: c_int) -> Result<Search, Error> {
-    if qsize >= 1 {
-        Ok(Search::default())
-    } else {
-        Err(Error::InvalidArgument)
-    }
-}
-
 /// A search from C's options; NULL means the default search.
 ///
 /// # Safety
@@ -312,6 +315,82 @@ pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search,
         qsize,
         triangle_cache,
     })
+}
+
+/// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
+pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
+
+/// How a distance or tolerance entry point takes its search from C.
+#[derive(Clone, Copy)]
+pub(crate) enum SearchArg {
+    /// PQP's queue size (pqp_distance, pqp_tolerance): at least 1, only checked; the default search.
+    QueueSize(c_int),
+    /// A `pqp_search_options` (pqp_distance_search, pqp_tolerance_search); NULL: the default.
+    Options(*const pqp_search_options),
+}
+
+impl SearchArg {
+    /// The search asked for, or `Err(InvalidArgument)`.
+    ///
+    /// # Safety
+    /// An `Options` pointer is NULL or points to a `pqp_search_options`.
+    unsafe fn read(self) -> Result<Search, Error> {
+        match self {
+            SearchArg::QueueSize(q) if q >= 1 => Ok(Search::default()),
+            SearchArg::QueueSize(_) => Err(Error::InvalidArgument),
+            // SAFETY: NULL or a `pqp_search_options` (this function's contract).
+            SearchArg::Options(o) => unsafe { read_search(o) },
+        }
+    }
+}
+
+/// The checked arguments of a distance or tolerance query, as [`pair_query`] hands them on.
+pub(crate) struct PairArgs<'a> {
+    pub(crate) m1: &'a Model,
+    pub(crate) pose1: Pose,
+    pub(crate) m2: &'a Model,
+    pub(crate) pose2: Pose,
+    pub(crate) search: Search,
+}
+
+/// Runs a distance or tolerance entry point: inside [`boundary`] (an internal fault resets `r`),
+/// checks the result, each posed model (pointers, then pose entries) and the search, in that order,
+/// and hands them to `run`, whose code it returns. The query's own arguments (error bounds,
+/// tolerance) are checked by the core query `run` calls.
+///
+/// # Safety
+/// Every pointer is NULL or valid as the header requires: `r` a live result no other call uses,
+/// poses 9 and 3 doubles, models live handles, search options as [`SearchArg::read`] needs.
+pub(crate) unsafe fn pair_query<R: Default>(
+    r: *mut R,
+    (r1, t1, m1): PosedModel,
+    (r2, t2, m2): PosedModel,
+    search: SearchArg,
+    run: impl FnOnce(&mut R, PairArgs<'_>) -> Result<(), Error>,
+) -> c_int {
+    let checked = || -> Result<(), Error> {
+        // SAFETY: every pointer is NULL or valid (this function's contract).
+        let (result, args) = unsafe {
+            let result = deref_mut(r)?;
+            let (pose1, m1) = (read_pose(r1, t1)?, deref(m1)?);
+            let (pose2, m2) = (read_pose(r2, t2)?, deref(m2)?);
+            let search = search.read()?;
+            let (m1, m2) = (&m1.model, &m2.model);
+            (
+                result,
+                PairArgs {
+                    m1,
+                    pose1,
+                    m2,
+                    pose2,
+                    search,
+                },
+            )
+        };
+        run(result, args)
+    };
+    // SAFETY: `r` is NULL or a live result (this function's contract).
+    boundary(PQP_ERR_INTERNAL, || unsafe { reset(r) }, || code(checked()))
 }
 
 /// Resets a result to its freshly created state after an internal fault, so that C never sees a

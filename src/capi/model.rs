@@ -2,7 +2,7 @@
 
 use super::legacy::LegacyView;
 use super::{
-    boundary, code, deref, deref_mut, free_handle, into_handle, read_doubles, status,
+    boundary, code, deref, deref_mut, destroy_handle, into_handle, read_doubles, status,
     PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
@@ -74,8 +74,8 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
 /// Thread safety: must not run concurrently with any other call using m.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(m)) }
+    // SAFETY: m is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(m) }
 }
 
 /// Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the

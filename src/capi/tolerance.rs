@@ -5,12 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, default_search, deref, deref_mut, free_handle, getter, into_handle,
-    pqp_model, pqp_search_options, read_pose, read_search, reset, status, write_pair, PosedModel,
-    PQP_ERR_INTERNAL,
+    count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model, pqp_search_options,
+    status, write_pair, PosedModel, SearchArg,
 };
-use crate::error::Error;
-use crate::query::{tolerance_into, Search, ToleranceResult};
+use crate::query::{tolerance_into, ToleranceResult};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -29,11 +27,7 @@ pub struct pqp_tolerance_result {
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub extern "C" fn pqp_tolerance_result_create() -> *mut pqp_tolerance_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_tolerance_result::default()),
-    )
+    new_handle::<pqp_tolerance_result>()
 }
 
 /// Frees a tolerance result.
@@ -42,8 +36,8 @@ pub extern "C" fn pqp_tolerance_result_create() -> *mut pqp_tolerance_result {
 /// Thread safety: must not run concurrently with any other call using r.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_result) {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe { boundary((), || {}, || free_handle(r)) }
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Decides whether two posed models are within a distance of each other (PQP_Tolerance).
@@ -82,18 +76,12 @@ pub unsafe extern "C" fn pqp_tolerance(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || reset(r),
-            || {
-                code(tolerance_with(
-                    r,
-                    (R1, T1, m1),
-                    (R2, T2, m2),
-                    tolerance,
-                    default_search(qsize),
-                ))
-            },
+        tolerance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            tolerance,
+            SearchArg::QueueSize(qsize),
         )
     }
 }
@@ -126,44 +114,40 @@ pub unsafe extern "C" fn pqp_tolerance_search(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || reset(r),
-            || {
-                code(tolerance_with(
-                    r,
-                    (R1, T1, m1),
-                    (R2, T2, m2),
-                    tolerance,
-                    read_search(options),
-                ))
-            },
+        tolerance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            tolerance,
+            SearchArg::Options(options),
         )
     }
 }
 
-/// The body of pqp_tolerance and pqp_tolerance_search.
-unsafe fn tolerance_with(
+/// The body of pqp_tolerance and pqp_tolerance_search, which differ in how they give the search.
+///
+/// # Safety
+/// As the entry points': every pointer NULL or valid as the header requires.
+unsafe fn tolerance_query(
     r: *mut pqp_tolerance_result,
-    (R1, T1, m1): PosedModel,
-    (R2, T2, m2): PosedModel,
+    one: PosedModel,
+    two: PosedModel,
     tolerance: f64,
-    search: Result<Search, Error>,
-) -> Result<(), Error> {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    search: SearchArg,
+) -> c_int {
+    // SAFETY: the pointers are as pair_query requires (this function's contract).
     unsafe {
-        let result = deref_mut(r)?;
-        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-        tolerance_into(
-            &mut result.result,
-            &m1.model,
-            &pose1,
-            &m2.model,
-            &pose2,
-            tolerance,
-            &search?,
-        )
+        pair_query(r, one, two, search, |r, q| {
+            tolerance_into(
+                &mut r.result,
+                q.m1,
+                &q.pose1,
+                q.m2,
+                &q.pose2,
+                tolerance,
+                &q.search,
+            )
+        })
     }
 }
 
