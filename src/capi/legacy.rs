@@ -295,8 +295,8 @@ unsafe fn clear<T>(out: *mut *const T, count: *mut c_int) {
     }
 }
 
-/// The body of the view getters: hands the view `get` gives to C (NULL and 0 on any error, and
-/// NULL for an empty view).
+/// The body of the view getters, inside the boundary: hands the view `get` gives to C (NULL and
+/// 0 on any error, and NULL for an empty view), and returns the code.
 ///
 /// # Safety
 /// `m` is NULL or a live handle; `out` and `count` are NULL or writable.
@@ -305,26 +305,35 @@ unsafe fn hand_out<T>(
     out: *mut *const T,
     count: *mut c_int,
     get: impl FnOnce(&pqp_model) -> Result<&[Entry<T>], Error>,
-) -> Result<(), Error> {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        clear(out, count);
-        let m = deref(m)?;
-        if out.is_null() || count.is_null() {
-            return Err(Error::NullPointer);
+) -> c_int {
+    let body = || -> Result<(), Error> {
+        // SAFETY: `m` is NULL or a live handle, `out` and `count` NULL or writable (this
+        // function's contract); neither is written through unless checked non-NULL.
+        unsafe {
+            clear(out, count);
+            let m = deref(m)?;
+            if out.is_null() || count.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let v = get(m)?;
+            // Views hold at most a C int's count of entries (see make_bvs; num_tris is one already).
+            let n = c_int::try_from(v.len()).map_err(|_| Error::ModelOutOfMemory)?;
+            out.write(if v.is_empty() {
+                ptr::null()
+            } else {
+                // `Entry<T>` is laid out as `T`.
+                v.as_ptr().cast::<T>()
+            });
+            count.write(n);
+            Ok(())
         }
-        let v = get(m)?;
-        // Views hold at most a C int's count of entries (see make_bvs; num_tris is one already).
-        let n = c_int::try_from(v.len()).map_err(|_| Error::ModelOutOfMemory)?;
-        out.write(if v.is_empty() {
-            ptr::null()
-        } else {
-            // `Entry<T>` is laid out as `T`.
-            v.as_ptr().cast::<T>()
-        });
-        count.write(n);
-        Ok(())
-    }
+    };
+    // SAFETY: as above.
+    boundary(
+        PQP_ERR_INTERNAL,
+        || unsafe { clear(out, count) },
+        || code(body()),
+    )
 }
 
 /// PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
@@ -353,15 +362,9 @@ pub unsafe extern "C" fn pqp_model_tris(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear(tris, num_tris),
-            || {
-                code(hand_out(m, tris, num_tris, |m| {
-                    view(&m.view.tris, || make_tris(&m.model))
-                }))
-            },
-        )
+        hand_out(m, tris, num_tris, |m| {
+            view(&m.view.tris, || make_tris(&m.model))
+        })
     }
 }
 
@@ -398,15 +401,9 @@ pub unsafe extern "C" fn pqp_model_bvs(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear(bvs, num_bvs),
-            || {
-                code(hand_out(m, bvs, num_bvs, |m| {
-                    view(&m.view.bvs, || make_bvs(&m.model))
-                }))
-            },
-        )
+        hand_out(m, bvs, num_bvs, |m| {
+            view(&m.view.bvs, || make_bvs(&m.model))
+        })
     }
 }
 
@@ -428,15 +425,9 @@ pub unsafe extern "C" fn pqp_model_tris_float(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear(tris, num_tris),
-            || {
-                code(hand_out(m, tris, num_tris, |m| {
-                    view(&m.view.tris_float, || make_tris(&m.model))
-                }))
-            },
-        )
+        hand_out(m, tris, num_tris, |m| {
+            view(&m.view.tris_float, || make_tris(&m.model))
+        })
     }
 }
 
@@ -457,15 +448,9 @@ pub unsafe extern "C" fn pqp_model_bvs_float(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear(bvs, num_bvs),
-            || {
-                code(hand_out(m, bvs, num_bvs, |m| {
-                    view(&m.view.bvs_float, || make_bvs(&m.model))
-                }))
-            },
-        )
+        hand_out(m, bvs, num_bvs, |m| {
+            view(&m.view.bvs_float, || make_bvs(&m.model))
+        })
     }
 }
 

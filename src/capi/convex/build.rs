@@ -52,27 +52,35 @@ unsafe fn read_indices(p: *const c_int, n: usize) -> Result<Vec<u32>, Error> {
     }
 }
 
-/// Builds a model with `make` and hands it to C through `out` (NULL there on any error).
+/// The body of the pqp_convex_model_from_ functions, inside the boundary (a fault leaves NULL in
+/// `out`): builds a model with `make` and hands it to C through `out` (NULL there on any error).
 ///
 /// # Safety
 /// `out` is NULL or points to a writable `pqp_convex_model *`.
 unsafe fn create(
     out: *mut *mut pqp_convex_model,
     make: impl FnOnce() -> Result<ConvexModel, Error>,
-) -> Result<(), Error> {
-    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
+) -> c_int {
+    let body = || -> Result<(), Error> {
         if out.is_null() {
             return Err(Error::NullPointer);
         }
-        out.write(ptr::null_mut());
+        // SAFETY: `out` is not NULL, so it is writable (this function's contract).
+        unsafe { out.write(ptr::null_mut()) };
         let h = into_handle(pqp_convex_model { model: make()? });
         if h.is_null() {
             return Err(Error::ModelOutOfMemory);
         }
-        out.write(h);
+        // SAFETY: as above.
+        unsafe { out.write(h) };
         Ok(())
-    }
+    };
+    // SAFETY: `out` is NULL or writable (this function's contract).
+    boundary(
+        PQP_ERR_INTERNAL,
+        || unsafe { clear_out(out) },
+        || code(body()),
+    )
 }
 
 /// After an internal fault in a create function: C sees NULL. (A handle is written only as the
@@ -114,17 +122,7 @@ pub unsafe extern "C" fn pqp_convex_model_from_points(
     n: c_int,
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear_out(out),
-            || {
-                code(create(out, || {
-                    ConvexModel::from_points(&read_points(xyz, n)?)
-                }))
-            },
-        )
-    }
+    unsafe { create(out, || ConvexModel::from_points(&read_points(xyz, n)?)) }
 }
 
 /// Creates a convex model from a closed convex triangle mesh, verified exactly.
@@ -165,11 +163,7 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
             let counts = vec![3u32; nt];
             ConvexModel::from_polygons(&v, &counts, &idx)
         };
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear_out(out),
-            || code(create(out, make)),
-        )
+        create(out, make)
     }
 }
 
@@ -220,11 +214,7 @@ pub unsafe extern "C" fn pqp_convex_model_from_polygons(
             let idx = read_indices(indices, ni)?;
             ConvexModel::from_polygons(&v, &counts, &idx)
         };
-        boundary(
-            PQP_ERR_INTERNAL,
-            || clear_out(out),
-            || code(create(out, make)),
-        )
+        create(out, make)
     }
 }
 

@@ -64,6 +64,28 @@ unsafe fn query<'a>(
     }
 }
 
+/// The body of pqp_convex_distance and pqp_convex_penetration, inside the boundary (a fault resets
+/// `r`): reads the query, and stores what `answer` gives in `r` (left unchanged on an error).
+///
+/// # Safety
+/// As [`query`], and `r` is NULL or a live result no other call uses.
+unsafe fn answer_into(
+    r: *mut pqp_convex_result,
+    (R1, T1, m1): (*const f64, *const f64, *const pqp_convex_model),
+    (R2, T2, m2): (*const f64, *const f64, *const pqp_convex_model),
+    cache: *mut pqp_convex_cache,
+    answer: impl FnOnce(Query<'_>) -> Result<pqp_convex_result, Error>,
+) -> c_int {
+    let body = || -> Result<(), Error> {
+        // SAFETY: every pointer is NULL or valid (this function's contract).
+        let (result, q) = unsafe { (deref_mut(r)?, query(R1, T1, m1, R2, T2, m2, cache)?) };
+        *result = answer(q)?;
+        Ok(())
+    };
+    // SAFETY: `r` is NULL or a live result (this function's contract).
+    boundary(PQP_ERR_INTERNAL, || unsafe { reset(r) }, || code(body()))
+}
+
 /// Computes the separation distance of two posed convex models, their closest points and closest
 /// feature pair, and whether they intersect (V-Clip).
 ///
@@ -101,14 +123,10 @@ pub unsafe extern "C" fn pqp_convex_distance(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        let body = || -> Result<(), Error> {
-            let result = deref_mut(r)?;
-            let q = query(R1, T1, m1, R2, T2, m2, cache)?;
+        answer_into(r, (R1, T1, m1), (R2, T2, m2), cache, |q| {
             let d = convex_distance(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
-            *result = pqp_convex_result::from_distance(&d);
-            Ok(())
-        };
-        boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+            Ok(pqp_convex_result::from_distance(&d))
+        })
     }
 }
 
@@ -184,13 +202,9 @@ pub unsafe extern "C" fn pqp_convex_penetration(
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
     unsafe {
-        let body = || -> Result<(), Error> {
-            let result = deref_mut(r)?;
-            let q = query(R1, T1, m1, R2, T2, m2, cache)?;
+        answer_into(r, (R1, T1, m1), (R2, T2, m2), cache, |q| {
             let p = convex_penetration(q.m1, &q.pose1, q.m2, &q.pose2, q.cache)?;
-            *result = pqp_convex_result::from_penetration(&p);
-            Ok(())
-        };
-        boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+            Ok(pqp_convex_result::from_penetration(&p))
+        })
     }
 }
