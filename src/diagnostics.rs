@@ -271,7 +271,7 @@ mod tests {
             // more than its nodes with two.
             let inner = m.nodes_below - m.leaf_pairs_below;
             let rest = m.nodes_below - 1 - m.single_child_below;
-            assert!(rest % 2 == 0);
+            assert!(rest.is_multiple_of(2));
             let two_below = rest / 2;
             assert_eq!(m.no_child_below + m.single_child_below + two_below, inner);
             assert_eq!(two_below + 1, m.leaf_pairs_below + m.no_child_below);

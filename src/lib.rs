@@ -36,6 +36,10 @@
 //! Threads: a built [`Model`] is immutable and `Sync`; any number of threads may query the same
 //! models at once. Results belong to their caller.
 
+#![deny(missing_docs)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+
 pub mod bounding_volume;
 pub(crate) mod bvh;
 pub mod capi;

@@ -379,20 +379,22 @@ fn brute_rect_distance(a: &Rect, b: &Rect) -> f64 {
     }
     for (x, y) in [(a, b), (b, a)] {
         for c in x.corners() {
-            if let Some((s, t, h)) = y.local(&c) {
-                if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-                    best = best.min(h.abs());
-                }
+            if let Some((s, t, h)) = y.local(&c)
+                && (0.0..=1.0).contains(&s)
+                && (0.0..=1.0).contains(&t)
+            {
+                best = best.min(h.abs());
             }
         }
         for (p0, p1) in x.edges() {
-            if let (Some((_, _, h0)), Some((_, _, h1))) = (y.local(&p0), y.local(&p1)) {
-                if (h0 <= 0.0 && h1 >= 0.0 || h0 >= 0.0 && h1 <= 0.0) && h0 != h1 {
-                    let m = p0 + (p1 - p0) * (h0 / (h0 - h1));
-                    let (s, t, _) = y.local(&m).unwrap();
-                    if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-                        best = 0.0;
-                    }
+            if let (Some((_, _, h0)), Some((_, _, h1))) = (y.local(&p0), y.local(&p1))
+                && (h0 <= 0.0 && h1 >= 0.0 || h0 >= 0.0 && h1 <= 0.0)
+                && h0 != h1
+            {
+                let m = p0 + (p1 - p0) * (h0 / (h0 - h1));
+                let (s, t, _) = y.local(&m).unwrap();
+                if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+                    best = 0.0;
                 }
             }
         }

@@ -181,15 +181,27 @@ fn every_constant_is_documented() {
     assert_eq!(count, defined);
 }
 
-/// The sources of the C layer, `src/capi/*.rs`.
-fn capi_sources() -> Vec<String> {
-    let dir = root().join("src/capi");
+/// The sources of the C layer: every `.rs` file under `src/capi`, with its path.
+fn capi_files() -> Vec<(std::path::PathBuf, String)> {
     let mut out = Vec::new();
-    for entry in std::fs::read_dir(&dir).expect("src/capi") {
-        let path = entry.expect("entry").path();
-        out.push(std::fs::read_to_string(&path).expect("source"));
+    let mut dirs = vec![root().join("src/capi")];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).expect("src/capi") {
+            let path = entry.expect("entry").path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let src = std::fs::read_to_string(&path).expect("source");
+                out.push((path, src));
+            }
+        }
     }
     out
+}
+
+/// The sources of the C layer.
+fn capi_sources() -> Vec<String> {
+    capi_files().into_iter().map(|(_, src)| src).collect()
 }
 
 /// The names of the functions the C layer exports (`extern "C" fn` in `src/capi`).
@@ -267,24 +279,30 @@ fn cxx_header_declares_every_code_and_flag_as_a_constant() {
     );
 }
 
-/// Every exported function runs its body through the one boundary helper (`boundary`, or `status`
-/// which wraps it), so that no panic can unwind into C.
+/// Every exported function runs its body through the one boundary helper (`boundary`), directly
+/// or through helpers of the C layer that do (`status`, `getter`, ...), so that no panic can
+/// unwind into C.
 #[test]
 fn every_exported_function_goes_through_the_boundary() {
-    let dir = root().join("src/capi");
-    let mut exported = 0;
-    for entry in std::fs::read_dir(&dir).expect("src/capi") {
-        let path = entry.expect("entry").path();
-        let src = std::fs::read_to_string(&path).expect("source");
+    // Every function of the C layer: its name, whether it is exported, and the call it ends in.
+    let mut functions = Vec::new();
+    for (path, src) in capi_files() {
         let mut rest = src.as_str();
-        while let Some(at) = rest.find("extern \"C\" fn ") {
+        while let Some(at) = rest.find("fn ") {
             let item = &rest[at..];
-            let name: String = item["extern \"C\" fn ".len()..]
+            let exported = rest[..at].ends_with("extern \"C\" ");
+            let word_start =
+                at == 0 || !rest[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_');
+            let name: String = item["fn ".len()..]
                 .chars()
                 .take_while(|c| c.is_alphanumeric() || *c == '_')
                 .collect();
+            let Some(open) = item.find('{') else { break };
+            if !word_start || name.is_empty() || item[..open].contains(';') {
+                rest = &item["fn ".len()..];
+                continue;
+            }
             // The body: from the first '{' after the signature to its matching '}'.
-            let open = item.find('{').expect("body");
             let mut depth = 0;
             let mut end = open;
             for (i, c) in item[open..].char_indices() {
@@ -300,19 +318,59 @@ fn every_exported_function_goes_through_the_boundary() {
                     _ => {}
                 }
             }
-            let body = &item[open + 1..end];
-            // The body's last top-level expression (after any `let` of a closure) is the call.
-            let last = last_expression(body);
-            assert!(
-                last.starts_with("boundary(") || last.starts_with("status("),
-                "{}: {name} does not run its body through the boundary",
-                path.display()
-            );
-            exported += 1;
+            let call = final_call(&item[open + 1..end]);
+            functions.push((path.clone(), name, exported, call));
             rest = &item[end..];
         }
     }
+    // The helpers that run the boundary: `boundary` itself, and any function ending in a call
+    // of one of them.
+    let mut helpers = vec!["boundary".to_string()];
+    loop {
+        let more: Vec<String> = functions
+            .iter()
+            .filter(|(_, name, _, call)| {
+                !helpers.contains(name)
+                    && helpers.iter().any(|h| {
+                        call.starts_with(&format!("{h}(")) || call.starts_with(&format!("{h}::<"))
+                    })
+            })
+            .map(|(_, name, _, _)| name.clone())
+            .collect();
+        if more.is_empty() {
+            break;
+        }
+        helpers.extend(more);
+    }
+    let mut exported = 0;
+    for (path, name, _, _) in functions.iter().filter(|f| f.2) {
+        assert!(
+            helpers.contains(name),
+            "{}: {name} does not run its body through the boundary",
+            path.display()
+        );
+        exported += 1;
+    }
     assert_eq!(exported, exported_functions().len());
+}
+
+/// The call a function body ends in: its last top-level expression, without comments and without
+/// `unsafe { }` around it.
+fn final_call(body: &str) -> String {
+    let code: String = body
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let mut last = last_expression(&code).to_string();
+    while let Some(inner) = last.strip_prefix("unsafe") {
+        let inner = inner.trim();
+        let Some(inner) = inner.strip_prefix('{').and_then(|i| i.strip_suffix('}')) else {
+            break;
+        };
+        last = last_expression(inner).to_string();
+    }
+    last
 }
 
 /// The text after the last `;` that is outside every bracket of `body`.

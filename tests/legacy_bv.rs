@@ -2,6 +2,9 @@
 //! brute force written here (an independent separating-axis test, point sampling, and rectangles
 //! as triangle pairs measured by the tests' own triangle distance).
 
+// Edition 2024: these helpers' bodies call the C ABI under their own `unsafe fn` contract.
+#![allow(unsafe_op_in_unsafe_fn)]
+
 mod common;
 
 use common::{add, cross, dot, norm, scale, sub, tri_tri, Rng, T, V};

@@ -1,6 +1,9 @@
 //! What PQP 1.3 programs read of a model, through the C ABI: the build protocol's codes and
 //! states, deep copies of models.
 
+// Edition 2024: these helpers' bodies call the C ABI under their own `unsafe fn` contract.
+#![allow(unsafe_op_in_unsafe_fn)]
+
 mod common;
 
 use common::{Mesh, Rng};
@@ -255,7 +258,7 @@ fn clone_refuses_null() {
     unsafe {
         let m = pqp_model_create();
         assert_eq!(pqp_model_clone(ptr::null_mut(), m), PQP_ERR_NULL_POINTER);
-        let mut out = 1usize as *mut pqp_model;
+        let mut out = std::ptr::dangling_mut::<pqp_model>();
         assert_eq!(pqp_model_clone(&mut out, ptr::null()), PQP_ERR_NULL_POINTER);
         assert!(out.is_null());
         pqp_model_destroy(m);
@@ -572,13 +575,13 @@ fn the_view_follows_the_build() {
         let m = pqp_model_create();
         // Fresh: no triangles, no volumes.
         assert!(tris_of(m).is_empty());
-        let (mut bp, mut bn) = (1usize as *const pqp_bv, 5);
+        let (mut bp, mut bn) = (std::ptr::dangling::<pqp_bv>(), 5);
         assert_eq!(
             pqp_model_bvs(m, &mut bp, &mut bn),
             PQP_ERR_UNPROCESSED_MODEL
         );
         assert!(bp.is_null() && bn == 0);
-        let (mut fp, mut fn_) = (1usize as *const pqp_bv_float, 5);
+        let (mut fp, mut fn_) = (std::ptr::dangling::<pqp_bv_float>(), 5);
         assert_eq!(
             pqp_model_bvs_float(m, &mut fp, &mut fn_),
             PQP_ERR_UNPROCESSED_MODEL
@@ -649,7 +652,7 @@ fn the_view_follows_the_build() {
 fn view_getters_refuse_null_and_clear_their_outputs() {
     unsafe {
         let m = c_model(&[[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]], PQP_BV_RSS);
-        let (mut tp, mut tn) = (1usize as *const pqp_tri, 7);
+        let (mut tp, mut tn) = (std::ptr::dangling::<pqp_tri>(), 7);
         assert_eq!(
             pqp_model_tris(ptr::null(), &mut tp, &mut tn),
             PQP_ERR_NULL_POINTER
@@ -664,7 +667,7 @@ fn view_getters_refuse_null_and_clear_their_outputs() {
             PQP_ERR_NULL_POINTER
         );
         assert!(tp.is_null());
-        let (mut bp, mut bn) = (1usize as *const pqp_bv, 7);
+        let (mut bp, mut bn) = (std::ptr::dangling::<pqp_bv>(), 7);
         assert_eq!(
             pqp_model_bvs(ptr::null(), &mut bp, &mut bn),
             PQP_ERR_NULL_POINTER
@@ -678,13 +681,13 @@ fn view_getters_refuse_null_and_clear_their_outputs() {
             pqp_model_bvs(m, &mut bp, ptr::null_mut()),
             PQP_ERR_NULL_POINTER
         );
-        let (mut fp, mut fn_) = (1usize as *const pqp_tri_float, 7);
+        let (mut fp, mut fn_) = (std::ptr::dangling::<pqp_tri_float>(), 7);
         assert_eq!(
             pqp_model_tris_float(ptr::null(), &mut fp, &mut fn_),
             PQP_ERR_NULL_POINTER
         );
         assert!(fp.is_null() && fn_ == 0);
-        let (mut gp, mut gn) = (1usize as *const pqp_bv_float, 7);
+        let (mut gp, mut gn) = (std::ptr::dangling::<pqp_bv_float>(), 7);
         assert_eq!(
             pqp_model_bvs_float(ptr::null(), &mut gp, &mut gn),
             PQP_ERR_NULL_POINTER

@@ -2,6 +2,9 @@
 //! both collision volumes (OBB, SSV) give the exact answers of brute force on random meshes and
 //! poses, so the same answers as each other; and the choice through the Rust and C APIs.
 
+// Edition 2024: these helpers' bodies call the C ABI under their own `unsafe fn` contract.
+#![allow(unsafe_op_in_unsafe_fn)]
+
 mod common;
 
 use common::{brute, Mesh, Rng};

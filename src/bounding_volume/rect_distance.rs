@@ -368,8 +368,22 @@ mod tests {
         let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
         let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
         let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
-        let la = [rng.f().abs(), if k % 5 == 0 { 0.0 } else { rng.f().abs() }];
-        let lb = [rng.f().abs(), if k % 7 == 0 { 0.0 } else { rng.f().abs() }];
+        let la = [
+            rng.f().abs(),
+            if k.is_multiple_of(5) {
+                0.0
+            } else {
+                rng.f().abs()
+            },
+        ];
+        let lb = [
+            rng.f().abs(),
+            if k.is_multiple_of(7) {
+                0.0
+            } else {
+                rng.f().abs()
+            },
+        ];
         (r, t, la, lb)
     }
 

@@ -5,8 +5,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, deref, deref_mut, free_handle, into_handle, pqp_model, read_pose, reset,
-    stat, PQP_ALL_CONTACTS, PQP_ERR_INTERNAL, PQP_FIRST_CONTACT,
+    boundary, code, count, deref, deref_mut, destroy_handle, getter, new_handle, pqp_model,
+    read_pose, reset, PQP_ALL_CONTACTS, PQP_ERR_INTERNAL, PQP_FIRST_CONTACT,
 };
 use crate::error::Error;
 use crate::query::{collide_into, CollideResult, ContactMode, ContactPair};
@@ -46,26 +46,19 @@ pub struct pqp_collide_result {
 /// @return a new result, to be freed with pqp_collide_result_destroy; NULL only if memory could
 ///         not be allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_collide_result_create() -> *mut pqp_collide_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || {
-            into_handle(pqp_collide_result {
-                result: CollideResult::new(),
-            })
-        },
-    )
+    new_handle::<pqp_collide_result>()
 }
 
 /// Frees a collision result.
 ///
 /// @param r  a result from pqp_collide_result_create, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_destroy(r: *mut pqp_collide_result) {
-    boundary((), || {}, || free_handle(r))
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Finds the colliding triangle pairs of two posed models (PQP_Collide).
@@ -90,7 +83,7 @@ pub unsafe extern "C" fn pqp_collide_result_destroy(r: *mut pqp_collide_result) 
 ///         reset to its freshly created state). On any other error r is left unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                r must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide(
     r: *mut pqp_collide_result,
     R1: *const f64,
@@ -101,25 +94,28 @@ pub unsafe extern "C" fn pqp_collide(
     m2: *const pqp_model,
     flag: c_int,
 ) -> c_int {
-    let body = || -> Result<(), Error> {
-        let result = deref_mut(r)?;
-        let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-        let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-        let mode = match flag {
-            PQP_ALL_CONTACTS => ContactMode::All,
-            PQP_FIRST_CONTACT => ContactMode::First,
-            _ => return Err(Error::InvalidArgument),
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let body = || -> Result<(), Error> {
+            let result = deref_mut(r)?;
+            let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
+            let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
+            let mode = match flag {
+                PQP_ALL_CONTACTS => ContactMode::All,
+                PQP_FIRST_CONTACT => ContactMode::First,
+                _ => return Err(Error::InvalidArgument),
+            };
+            collide_into(
+                &mut result.result,
+                &m1.model,
+                &pose1,
+                &m2.model,
+                &pose2,
+                mode,
+            )
         };
-        collide_into(
-            &mut result.result,
-            &m1.model,
-            &pose1,
-            &m2.model,
-            &pose2,
-            mode,
-        )
-    };
-    boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+        boundary(PQP_ERR_INTERNAL, || reset(r), || code(body()))
+    }
 }
 
 /// Whether the last pqp_collide on r found a colliding triangle pair.
@@ -127,13 +123,10 @@ pub unsafe extern "C" fn pqp_collide(
 /// @param r  the result, or NULL.
 /// @return 1 if colliding, else 0 (also before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_colliding(r: *const pqp_collide_result) -> c_int {
-    boundary(
-        0,
-        || {},
-        || deref(r).map_or(0, |r| c_int::from(r.result.colliding())),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| c_int::from(r.result.colliding())) }
 }
 
 /// The number of colliding triangle pairs the last pqp_collide on r found (at most 1 with
@@ -142,17 +135,14 @@ pub unsafe extern "C" fn pqp_collide_result_colliding(r: *const pqp_collide_resu
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query or after pqp_collide_result_free_pairs); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_num_pairs(r: *const pqp_collide_result) -> c_int {
-    boundary(
-        0,
-        || {},
-        || {
-            deref(r).map_or(0, |r| {
-                c_int::try_from(r.result.num_pairs()).unwrap_or(c_int::MAX)
-            })
-        },
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe {
+        getter(r, 0, |r| {
+            c_int::try_from(r.result.num_pairs()).unwrap_or(c_int::MAX)
+        })
+    }
 }
 
 /// One colliding pair's id for model 1 (PQP's Id1).
@@ -161,9 +151,10 @@ pub unsafe extern "C" fn pqp_collide_result_num_pairs(r: *const pqp_collide_resu
 /// @param k  the pair's index, 0 <= k < pqp_collide_result_num_pairs(r).
 /// @return the id of the pair's triangle of model 1; -1 if r is NULL or k is out of range.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_id1(r: *const pqp_collide_result, k: c_int) -> c_int {
-    boundary(-1, || {}, || pair(r, k).map_or(-1, |p| p.id1))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| pair(r, k).map_or(-1, |p| p.id1)) }
 }
 
 /// One colliding pair's id for model 2 (PQP's Id2).
@@ -172,14 +163,14 @@ pub unsafe extern "C" fn pqp_collide_result_id1(r: *const pqp_collide_result, k:
 /// @param k  the pair's index, 0 <= k < pqp_collide_result_num_pairs(r).
 /// @return the id of the pair's triangle of model 2; -1 if r is NULL or k is out of range.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_id2(r: *const pqp_collide_result, k: c_int) -> c_int {
-    boundary(-1, || {}, || pair(r, k).map_or(-1, |p| p.id2))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| pair(r, k).map_or(-1, |p| p.id2)) }
 }
 
-/// Pair `k` of a collision result, if both exist.
-unsafe fn pair(r: *const pqp_collide_result, k: c_int) -> Option<ContactPair> {
-    let r = deref(r).ok()?;
+/// Pair `k` of a collision result, if it exists.
+fn pair(r: &pqp_collide_result, k: c_int) -> Option<ContactPair> {
     let k = usize::try_from(k).ok()?;
     r.result.pairs().get(k).copied()
 }
@@ -191,37 +182,43 @@ unsafe fn pair(r: *const pqp_collide_result, k: c_int) -> Option<ContactPair> {
 ///         are none or r is NULL. The array belongs to r and stays valid until the next call that
 ///         modifies r (pqp_collide, pqp_collide_result_free_pairs, pqp_collide_result_destroy).
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_pairs(
     r: *const pqp_collide_result,
 ) -> *const pqp_contact_pair {
-    boundary(
-        ptr::null(),
-        || {},
-        || match deref(r) {
-            Ok(r) if r.result.num_pairs() > 0 => {
-                r.result.pairs().as_ptr().cast::<pqp_contact_pair>()
-            }
-            _ => ptr::null(),
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            ptr::null(),
+            || {},
+            || match deref(r) {
+                Ok(r) if r.result.num_pairs() > 0 => {
+                    r.result.pairs().as_ptr().cast::<pqp_contact_pair>()
+                }
+                _ => ptr::null(),
+            },
+        )
+    }
 }
 
 /// Frees a collision result's pair list (PQP's FreePairsList); the result then reports no pairs.
 ///
 /// @param r  the result, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_free_pairs(r: *mut pqp_collide_result) {
-    boundary(
-        (),
-        || {},
-        || {
-            if let Ok(r) = deref_mut(r) {
-                r.result.free_pairs();
-            }
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            (),
+            || {},
+            || {
+                if let Ok(r) = deref_mut(r) {
+                    r.result.free_pairs();
+                }
+            },
+        )
+    }
 }
 
 /// The number of bounding-volume overlap tests the last pqp_collide on r performed.
@@ -229,13 +226,10 @@ pub unsafe extern "C" fn pqp_collide_result_free_pairs(r: *mut pqp_collide_resul
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_num_bv_tests(r: *const pqp_collide_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.bv_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.bv_tests)) }
 }
 
 /// The number of triangle-pair overlap tests the last pqp_collide on r performed.
@@ -243,13 +237,10 @@ pub unsafe extern "C" fn pqp_collide_result_num_bv_tests(r: *const pqp_collide_r
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_num_tri_tests(r: *const pqp_collide_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.tri_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.tri_tests)) }
 }
 
 /// The wall-clock time of the last pqp_collide on r.
@@ -257,11 +248,8 @@ pub unsafe extern "C" fn pqp_collide_result_num_tri_tests(r: *const pqp_collide_
 /// @param r  the result, or NULL.
 /// @return seconds (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_collide_result_query_time_secs(r: *const pqp_collide_result) -> f64 {
-    boundary(
-        0.0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0.0, |s| s.query_time_secs),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0.0, |r| r.result.stats.query_time_secs) }
 }

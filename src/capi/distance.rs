@@ -5,12 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
-    pqp_search_options, read_pose, read_search, reset, stat, status, write_pair, PosedModel,
-    DEFAULT_SEARCH_OPTIONS, PQP_ERR_INTERNAL,
+    boundary, count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model,
+    pqp_search_options, status, write_pair, PosedModel, SearchArg, DEFAULT_SEARCH_OPTIONS,
 };
-use crate::error::Error;
-use crate::query::{distance_into, DistanceOptions, DistanceResult, Search};
+use crate::query::{distance_into, DistanceOptions, DistanceResult};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -27,22 +25,19 @@ pub struct pqp_distance_result {
 /// @return a new result, to be freed with pqp_distance_result_destroy; NULL only if memory could
 ///         not be allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_distance_result_create() -> *mut pqp_distance_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_distance_result::default()),
-    )
+    new_handle::<pqp_distance_result>()
 }
 
 /// Frees a distance result.
 ///
 /// @param r  a result from pqp_distance_result_create, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result) {
-    boundary((), || {}, || free_handle(r))
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Computes the separation distance of two posed models and a closest pair of points
@@ -74,7 +69,7 @@ pub unsafe extern "C" fn pqp_distance_result_destroy(r: *mut pqp_distance_result
 ///         freshly created state). On any other error r is left unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                r must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance(
     r: *mut pqp_distance_result,
     R1: *const f64,
@@ -87,20 +82,17 @@ pub unsafe extern "C" fn pqp_distance(
     abs_err: f64,
     qsize: c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || reset(r),
-        || {
-            code(distance_with(
-                r,
-                (R1, T1, m1),
-                (R2, T2, m2),
-                rel_err,
-                abs_err,
-                default_search(qsize),
-            ))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        distance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            rel_err,
+            abs_err,
+            SearchArg::QueueSize(qsize),
+        )
+    }
 }
 
 /// As pqp_distance, with the search chosen by options (NULL: the default search).
@@ -117,7 +109,7 @@ pub unsafe extern "C" fn pqp_distance(
 /// @return PQP_OK, or as pqp_distance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
 ///         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
 /// Thread safety: as pqp_distance.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_search(
     r: *mut pqp_distance_result,
     R1: *const f64,
@@ -130,47 +122,42 @@ pub unsafe extern "C" fn pqp_distance_search(
     abs_err: f64,
     options: *const pqp_search_options,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || reset(r),
-        || {
-            code(distance_with(
-                r,
-                (R1, T1, m1),
-                (R2, T2, m2),
-                rel_err,
-                abs_err,
-                read_search(options),
-            ))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        distance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            rel_err,
+            abs_err,
+            SearchArg::Options(options),
+        )
+    }
 }
 
-/// The body of pqp_distance and pqp_distance_search.
-unsafe fn distance_with(
+/// The body of pqp_distance and pqp_distance_search, which differ in how they give the search.
+///
+/// # Safety
+/// As the entry points': every pointer NULL or valid as the header requires.
+unsafe fn distance_query(
     r: *mut pqp_distance_result,
-    (R1, T1, m1): PosedModel,
-    (R2, T2, m2): PosedModel,
+    one: PosedModel,
+    two: PosedModel,
     rel_err: f64,
     abs_err: f64,
-    search: Result<Search, Error>,
-) -> Result<(), Error> {
-    let result = deref_mut(r)?;
-    let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-    let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-    let options = DistanceOptions {
-        rel_err,
-        abs_err,
-        search: search?,
-    };
-    distance_into(
-        &mut result.result,
-        &m1.model,
-        &pose1,
-        &m2.model,
-        &pose2,
-        &options,
-    )
+    search: SearchArg,
+) -> c_int {
+    // SAFETY: the pointers are as pair_query requires (this function's contract).
+    unsafe {
+        pair_query(r, one, two, search, |r, q| {
+            let options = DistanceOptions {
+                rel_err,
+                abs_err,
+                search: q.search,
+            };
+            distance_into(&mut r.result, q.m1, &q.pose1, q.m2, &q.pose2, &options)
+        })
+    }
 }
 
 /// The default search options: PQP_SEARCH_AUTO (priority-directed for distance, depth-first for
@@ -178,7 +165,7 @@ unsafe fn distance_with(
 ///
 /// @return the options, to adjust and pass to pqp_distance_search or pqp_tolerance_search.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_search_options_default() -> pqp_search_options {
     boundary(DEFAULT_SEARCH_OPTIONS, || {}, || DEFAULT_SEARCH_OPTIONS)
 }
@@ -192,13 +179,10 @@ pub extern "C" fn pqp_search_options_default() -> pqp_search_options {
 /// @param r  the result, or NULL.
 /// @return the distance; +infinity before any query; NaN if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_distance(r: *const pqp_distance_result) -> f64 {
-    boundary(
-        f64::NAN,
-        || {},
-        || deref(r).map_or(f64::NAN, |r| r.result.distance),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, f64::NAN, |r| r.result.distance) }
 }
 
 /// The closest point on model 1 found by the last pqp_distance on r, in model 1's frame.
@@ -210,13 +194,10 @@ pub unsafe extern "C" fn pqp_distance_result_distance(r: *const pqp_distance_res
 /// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; (0, 0, 0)
 ///         before any query; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_p1(r: *const pqp_distance_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || deref(r).map_or(ptr::null(), |r| r.result.p1.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.result.p1.as_ptr()) }
 }
 
 /// The closest point on model 2 found by the last pqp_distance on r, in model 2's frame.
@@ -225,13 +206,10 @@ pub unsafe extern "C" fn pqp_distance_result_p1(r: *const pqp_distance_result) -
 /// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; (0, 0, 0)
 ///         before any query; NULL if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_p2(r: *const pqp_distance_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || deref(r).map_or(ptr::null(), |r| r.result.p2.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.result.p2.as_ptr()) }
 }
 
 /// Whether the last pqp_distance on r found the models touching or overlapping (distance 0).
@@ -239,13 +217,10 @@ pub unsafe extern "C" fn pqp_distance_result_p2(r: *const pqp_distance_result) -
 /// @param r  the result, or NULL.
 /// @return 1 if they touch or overlap, else 0 (also before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_overlap(r: *const pqp_distance_result) -> c_int {
-    boundary(
-        0,
-        || {},
-        || deref(r).map_or(0, |r| c_int::from(r.result.overlap)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| c_int::from(r.result.overlap)) }
 }
 
 /// The id of model 1's triangle of the closest (or, when overlapping, an intersecting) triangle
@@ -254,9 +229,10 @@ pub unsafe extern "C" fn pqp_distance_result_overlap(r: *const pqp_distance_resu
 /// @param r  the result, or NULL.
 /// @return the id given to pqp_model_add_tri; -1 before any query or if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_id1(r: *const pqp_distance_result) -> c_int {
-    boundary(-1, || {}, || deref(r).map_or(-1, |r| r.result.id1))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.result.id1) }
 }
 
 /// The id of model 2's triangle of the closest (or, when overlapping, an intersecting) triangle
@@ -265,9 +241,10 @@ pub unsafe extern "C" fn pqp_distance_result_id1(r: *const pqp_distance_result) 
 /// @param r  the result, or NULL.
 /// @return the id given to pqp_model_add_tri; -1 before any query or if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_id2(r: *const pqp_distance_result) -> c_int {
-    boundary(-1, || {}, || deref(r).map_or(-1, |r| r.result.id2))
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, -1, |r| r.result.id2) }
 }
 
 /// The triangles of the closest (or, when overlapping, an intersecting) triangle pair found by the
@@ -282,16 +259,19 @@ pub unsafe extern "C" fn pqp_distance_result_id2(r: *const pqp_distance_result) 
 /// @return PQP_OK (also before any query, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or t2 is
 ///         NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_triangles(
     r: *const pqp_distance_result,
     t1: *mut c_int,
     t2: *mut c_int,
 ) -> c_int {
-    status(|| {
-        let r = &deref(r)?.result;
-        write_pair(t1, t2, r.tri1, r.tri2)
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let r = &deref(r)?.result;
+            write_pair(t1, t2, r.tri1, r.tri2)
+        })
+    }
 }
 
 /// The number of bounding-volume distance tests the last pqp_distance on r performed.
@@ -299,13 +279,10 @@ pub unsafe extern "C" fn pqp_distance_result_triangles(
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_num_bv_tests(r: *const pqp_distance_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.bv_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.bv_tests)) }
 }
 
 /// The number of triangle-pair distance tests the last pqp_distance on r performed.
@@ -313,13 +290,10 @@ pub unsafe extern "C" fn pqp_distance_result_num_bv_tests(r: *const pqp_distance
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_num_tri_tests(r: *const pqp_distance_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.tri_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.tri_tests)) }
 }
 
 /// The wall-clock time of the last pqp_distance on r.
@@ -327,11 +301,8 @@ pub unsafe extern "C" fn pqp_distance_result_num_tri_tests(r: *const pqp_distanc
 /// @param r  the result, or NULL.
 /// @return seconds (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_distance_result_query_time_secs(r: *const pqp_distance_result) -> f64 {
-    boundary(
-        0.0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0.0, |s| s.query_time_secs),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0.0, |r| r.result.stats.query_time_secs) }
 }

@@ -35,9 +35,12 @@ fn triangle(v: &[f64; 9]) -> Tri {
 /// # Safety
 /// Each pointer is non-NULL and writable: `distance` one double, `p` and `q` three each.
 unsafe fn write_answer(c: &ClosestPoints, distance: *mut f64, p: *mut f64, q: *mut f64) {
-    distance.write_unaligned(c.distance);
-    p.cast::<[f64; 3]>().write_unaligned([c.p.x, c.p.y, c.p.z]);
-    q.cast::<[f64; 3]>().write_unaligned([c.q.x, c.q.y, c.q.z]);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        distance.write_unaligned(c.distance);
+        p.cast::<[f64; 3]>().write_unaligned([c.p.x, c.p.y, c.p.z]);
+        q.cast::<[f64; 3]>().write_unaligned([c.q.x, c.q.y, c.q.z]);
+    }
 }
 
 /// `Err(NullPointer)` if any output pointer is NULL.
@@ -69,7 +72,7 @@ fn check_outputs(distance: *mut f64, p: *mut f64, q: *mut f64) -> Result<(), Err
 ///         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an
 ///         internal fault. On an error nothing is written. The outputs may overlap the inputs.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_triangle_distance(
     distance: *mut f64,
     p: *mut f64,
@@ -77,16 +80,19 @@ pub unsafe extern "C" fn pqp_triangle_distance(
     s: *const f64,
     t: *const f64,
 ) -> c_int {
-    status(|| {
-        let s: [f64; 9] = read_doubles(s)?;
-        let t: [f64; 9] = read_doubles(t)?;
-        check_outputs(distance, p, q)?;
-        check_coordinates(&s)?;
-        check_coordinates(&t)?;
-        let c = tri_distance(&triangle(&s), &triangle(&t));
-        write_answer(&c, distance, p, q);
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let s: [f64; 9] = read_doubles(s)?;
+            let t: [f64; 9] = read_doubles(t)?;
+            check_outputs(distance, p, q)?;
+            check_coordinates(&s)?;
+            check_coordinates(&t)?;
+            let c = tri_distance(&triangle(&s), &triangle(&t));
+            write_answer(&c, distance, p, q);
+            Ok(())
+        })
+    }
 }
 
 /// Computes the distance between two segments and a closest pair of points (the closest points of
@@ -107,7 +113,7 @@ pub unsafe extern "C" fn pqp_triangle_distance(
 ///         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an
 ///         internal fault. On an error nothing is written. The outputs may overlap the inputs.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_segment_distance(
     distance: *mut f64,
     x: *mut f64,
@@ -117,22 +123,25 @@ pub unsafe extern "C" fn pqp_segment_distance(
     b: *const f64,
     db: *const f64,
 ) -> c_int {
-    status(|| {
-        let inputs: [[f64; 3]; 4] = [
-            read_doubles(a)?,
-            read_doubles(da)?,
-            read_doubles(b)?,
-            read_doubles(db)?,
-        ];
-        check_outputs(distance, x, y)?;
-        for v in &inputs {
-            check_coordinates(v)?;
-        }
-        let [a, da, b, db] = inputs.map(Vec3::from);
-        let c = segment_segment_dir(&a, &da, &b, &db);
-        write_answer(&c, distance, x, y);
-        Ok(())
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let inputs: [[f64; 3]; 4] = [
+                read_doubles(a)?,
+                read_doubles(da)?,
+                read_doubles(b)?,
+                read_doubles(db)?,
+            ];
+            check_outputs(distance, x, y)?;
+            for v in &inputs {
+                check_coordinates(v)?;
+            }
+            let [a, da, b, db] = inputs.map(Vec3::from);
+            let c = segment_segment_dir(&a, &da, &b, &db);
+            write_answer(&c, distance, x, y);
+            Ok(())
+        })
+    }
 }
 
 #[cfg(test)]
@@ -146,6 +155,7 @@ mod tests {
     /// pqp_triangle_distance's answer, or its error code.
     fn tri(s: &[f64; 9], t: &[f64; 9]) -> Result<(f64, [f64; 3], [f64; 3]), c_int> {
         let (mut d, mut p, mut q) = (f64::NAN, [f64::NAN; 3], [f64::NAN; 3]);
+        // SAFETY: every pointer is to a live local array of the length the function reads or writes.
         let rc = unsafe {
             pqp_triangle_distance(
                 &mut d,
@@ -165,6 +175,7 @@ mod tests {
     /// pqp_segment_distance's answer, or its error code.
     fn seg(v: [[f64; 3]; 4]) -> Result<(f64, [f64; 3], [f64; 3]), c_int> {
         let (mut d, mut x, mut y) = (f64::NAN, [f64::NAN; 3], [f64::NAN; 3]);
+        // SAFETY: every pointer is to a live local array of the length the function reads or writes.
         let rc = unsafe {
             pqp_segment_distance(
                 &mut d,
@@ -215,6 +226,7 @@ mod tests {
         let (mut d, mut p, mut q) = (7.0, [7.0; 3], [7.0; 3]);
         let (dp, pp, qp) = (&mut d as *mut f64, p.as_mut_ptr(), q.as_mut_ptr());
         let s = S.as_ptr();
+        // SAFETY: every pointer is NULL (the case under test) or to a live local of the right length.
         unsafe {
             assert_eq!(
                 pqp_triangle_distance(ptr::null_mut(), pp, qp, s, s),
@@ -280,6 +292,7 @@ mod tests {
         let (dp, xp, yp) = (&mut d as *mut f64, x.as_mut_ptr(), y.as_mut_ptr());
         let v = ok[0].as_ptr();
         let n = ptr::null::<f64>();
+        // SAFETY: every pointer is NULL (the case under test) or to a live local of the right length.
         unsafe {
             let m = ptr::null_mut::<f64>();
             assert_eq!(

@@ -284,16 +284,19 @@ fn make_bvs<T: ViewBv>(model: &Model) -> Result<Vec<Entry<T>>, Error> {
 /// # Safety
 /// Each pointer is NULL or writable.
 unsafe fn clear<T>(out: *mut *const T, count: *mut c_int) {
-    if !out.is_null() {
-        out.write(ptr::null());
-    }
-    if !count.is_null() {
-        count.write(0);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if !out.is_null() {
+            out.write(ptr::null());
+        }
+        if !count.is_null() {
+            count.write(0);
+        }
     }
 }
 
-/// The body of the view getters: hands the view `get` gives to C (NULL and 0 on any error, and
-/// NULL for an empty view).
+/// The body of the view getters, inside the boundary: hands the view `get` gives to C (NULL and
+/// 0 on any error, and NULL for an empty view), and returns the code.
 ///
 /// # Safety
 /// `m` is NULL or a live handle; `out` and `count` are NULL or writable.
@@ -302,23 +305,35 @@ unsafe fn hand_out<T>(
     out: *mut *const T,
     count: *mut c_int,
     get: impl FnOnce(&pqp_model) -> Result<&[Entry<T>], Error>,
-) -> Result<(), Error> {
-    clear(out, count);
-    let m = deref(m)?;
-    if out.is_null() || count.is_null() {
-        return Err(Error::NullPointer);
-    }
-    let v = get(m)?;
-    // Views hold at most a C int's count of entries (see make_bvs; num_tris is one already).
-    let n = c_int::try_from(v.len()).map_err(|_| Error::ModelOutOfMemory)?;
-    out.write(if v.is_empty() {
-        ptr::null()
-    } else {
-        // `Entry<T>` is laid out as `T`.
-        v.as_ptr().cast::<T>()
-    });
-    count.write(n);
-    Ok(())
+) -> c_int {
+    let body = || -> Result<(), Error> {
+        // SAFETY: `m` is NULL or a live handle, `out` and `count` NULL or writable (this
+        // function's contract); neither is written through unless checked non-NULL.
+        unsafe {
+            clear(out, count);
+            let m = deref(m)?;
+            if out.is_null() || count.is_null() {
+                return Err(Error::NullPointer);
+            }
+            let v = get(m)?;
+            // Views hold at most a C int's count of entries (see make_bvs; num_tris is one already).
+            let n = c_int::try_from(v.len()).map_err(|_| Error::ModelOutOfMemory)?;
+            out.write(if v.is_empty() {
+                ptr::null()
+            } else {
+                // `Entry<T>` is laid out as `T`.
+                v.as_ptr().cast::<T>()
+            });
+            count.write(n);
+            Ok(())
+        }
+    };
+    // SAFETY: as above.
+    boundary(
+        PQP_ERR_INTERNAL,
+        || unsafe { clear(out, count) },
+        || code(body()),
+    )
 }
 
 /// PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
@@ -339,21 +354,18 @@ unsafe fn hand_out<T>(
 ///         internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m (threads asking at once
 ///                all get the same array), not with build calls on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_tris(
     m: *const pqp_model,
     tris: *mut *const pqp_tri,
     num_tris: *mut c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear(tris, num_tris),
-        || {
-            code(hand_out(m, tris, num_tris, |m| {
-                view(&m.view.tris, || make_tris(&m.model))
-            }))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        hand_out(m, tris, num_tris, |m| {
+            view(&m.view.tris, || make_tris(&m.model))
+        })
+    }
 }
 
 /// PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
@@ -381,21 +393,18 @@ pub unsafe extern "C" fn pqp_model_tris(
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m (threads asking at once
 ///                all get the same array), not with build calls on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_bvs(
     m: *const pqp_model,
     bvs: *mut *const pqp_bv,
     num_bvs: *mut c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear(bvs, num_bvs),
-        || {
-            code(hand_out(m, bvs, num_bvs, |m| {
-                view(&m.view.bvs, || make_bvs(&m.model))
-            }))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        hand_out(m, bvs, num_bvs, |m| {
+            view(&m.view.bvs, || make_bvs(&m.model))
+        })
+    }
 }
 
 /// As pqp_model_tris, with float coordinates (pqp_tri_float): for code compiled with PQP_REAL
@@ -408,21 +417,18 @@ pub unsafe extern "C" fn pqp_model_bvs(
 /// @return PQP_OK, or as pqp_model_tris (PQP_ERR_NULL_POINTER, PQP_ERR_MODEL_OUT_OF_MEMORY,
 ///         PQP_ERR_INTERNAL).
 /// Thread safety: as pqp_model_tris.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_tris_float(
     m: *const pqp_model,
     tris: *mut *const pqp_tri_float,
     num_tris: *mut c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear(tris, num_tris),
-        || {
-            code(hand_out(m, tris, num_tris, |m| {
-                view(&m.view.tris_float, || make_tris(&m.model))
-            }))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        hand_out(m, tris, num_tris, |m| {
+            view(&m.view.tris_float, || make_tris(&m.model))
+        })
+    }
 }
 
 /// As pqp_model_bvs, with float values (pqp_bv_float): for code compiled with PQP_REAL float. The
@@ -434,21 +440,18 @@ pub unsafe extern "C" fn pqp_model_tris_float(
 /// @return PQP_OK, or as pqp_model_bvs (PQP_ERR_NULL_POINTER, PQP_ERR_UNPROCESSED_MODEL,
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_INTERNAL).
 /// Thread safety: as pqp_model_bvs.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_bvs_float(
     m: *const pqp_model,
     bvs: *mut *const pqp_bv_float,
     num_bvs: *mut c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || clear(bvs, num_bvs),
-        || {
-            code(hand_out(m, bvs, num_bvs, |m| {
-                view(&m.view.bvs_float, || make_bvs(&m.model))
-            }))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        hand_out(m, bvs, num_bvs, |m| {
+            view(&m.view.bvs_float, || make_bvs(&m.model))
+        })
+    }
 }
 
 /// The rotation and translation of PQP's BV functions, checked as a pose.
@@ -456,12 +459,15 @@ pub unsafe extern "C" fn pqp_model_bvs_float(
 /// # Safety
 /// Each pointer is NULL or points to that many doubles.
 unsafe fn read_placement(R: *const f64, T: *const f64) -> Result<RelPose, Error> {
-    let pose: Pose = super::read_pose(R, T)?;
-    pose.validate()?;
-    Ok(RelPose {
-        rot: pose.rotation,
-        trans: pose.translation,
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        let pose: Pose = super::read_pose(R, T)?;
+        pose.validate()?;
+        Ok(RelPose {
+            rot: pose.rotation,
+            trans: pose.translation,
+        })
+    }
 }
 
 /// `v` if it is a size a volume can have: `Err(NonFiniteCoordinate)` for NaN, infinity or a
@@ -497,14 +503,15 @@ fn size(v: f64) -> Result<f64, Error> {
 ///         internal fault. On any error *bv is left unchanged.
 /// Thread safety: may be called from any thread at any time; bv must not be used by another
 ///                thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_bv_fit(
     bv: *mut pqp_bv,
     O: *const f64,
     tris: *const pqp_tri,
     num_tris: c_int,
 ) -> c_int {
-    boundary(PQP_ERR_INTERNAL, || {}, || code(fit(bv, O, tris, num_tris)))
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { boundary(PQP_ERR_INTERNAL, || {}, || code(fit(bv, O, tris, num_tris))) }
 }
 
 /// The body of pqp_bv_fit.
@@ -517,41 +524,44 @@ unsafe fn fit(
     tris: *const pqp_tri,
     num_tris: c_int,
 ) -> Result<(), Error> {
-    if bv.is_null() || tris.is_null() {
-        return Err(Error::NullPointer);
-    }
-    let o: [f64; 9] = read_doubles(O)?;
-    let n = usize::try_from(num_tris)
-        .ok()
-        .filter(|&n| n > 0)
-        .ok_or(Error::InvalidArgument)?;
-    if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
-        return Err(Error::NonFinitePose);
-    }
-    let axes = Mat3::new(o[0], o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8]);
-    let mut points: Vec<Vec3> = Vec::new();
-    points
-        .try_reserve_exact(3 * n)
-        .map_err(|_| Error::OutOfMemory)?;
-    for i in 0..n {
-        let t = tris.add(i).read_unaligned();
-        for p in [t.p1, t.p2, t.p3] {
-            if !p.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
-                return Err(Error::NonFiniteCoordinate);
-            }
-            points.push(p.into());
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if bv.is_null() || tris.is_null() {
+            return Err(Error::NullPointer);
         }
+        let o: [f64; 9] = read_doubles(O)?;
+        let n = usize::try_from(num_tris)
+            .ok()
+            .filter(|&n| n > 0)
+            .ok_or(Error::InvalidArgument)?;
+        if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
+            return Err(Error::NonFinitePose);
+        }
+        let axes = Mat3::new(o[0], o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8]);
+        let mut points: Vec<Vec3> = Vec::new();
+        points
+            .try_reserve_exact(3 * n)
+            .map_err(|_| Error::OutOfMemory)?;
+        for i in 0..n {
+            let t = tris.add(i).read_unaligned();
+            for p in [t.p1, t.p2, t.p3] {
+                if !p.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE) {
+                    return Err(Error::NonFiniteCoordinate);
+                }
+                points.push(p.into());
+            }
+        }
+        let ssv = Ssv::fit(SsvKind::Rect, &axes, &points);
+        let obb = Obb::fit(&axes, &points);
+        let out = &mut *bv;
+        out.R = [[o[0], o[1], o[2]], [o[3], o[4], o[5]], [o[6], o[7], o[8]]];
+        out.Tr = ssv.origin.into();
+        out.l = ssv.lengths;
+        out.r = ssv.radius;
+        out.To = obb.center.into();
+        out.d = obb.half.into();
+        Ok(())
     }
-    let ssv = Ssv::fit(SsvKind::Rect, &axes, &points);
-    let obb = Obb::fit(&axes, &points);
-    let out = &mut *bv;
-    out.R = [[o[0], o[1], o[2]], [o[3], o[4], o[5]], [o[6], o[7], o[8]]];
-    out.Tr = ssv.origin.into();
-    out.l = ssv.lengths;
-    out.r = ssv.radius;
-    out.To = obb.center.into();
-    out.d = obb.half.into();
-    Ok(())
 }
 
 /// PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
@@ -574,7 +584,7 @@ unsafe fn fit(
 ///         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
 ///         negative; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_bv_overlap(
     overlap: *mut c_int,
     R: *const f64,
@@ -582,11 +592,14 @@ pub unsafe extern "C" fn pqp_bv_overlap(
     b1: *const pqp_bv,
     b2: *const pqp_bv,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || {},
-        || code(boxes_overlap(overlap, R, T, b1, b2)),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            PQP_ERR_INTERNAL,
+            || {},
+            || code(boxes_overlap(overlap, R, T, b1, b2)),
+        )
+    }
 }
 
 /// The body of pqp_bv_overlap.
@@ -600,21 +613,24 @@ unsafe fn boxes_overlap(
     b1: *const pqp_bv,
     b2: *const pqp_bv,
 ) -> Result<(), Error> {
-    if overlap.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if overlap.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let rel = read_placement(R, T)?;
+        let (b1, b2) = (deref(b1)?, deref(b2)?);
+        let about_origin = |d: &[f64; 3]| -> Result<Obb, Error> {
+            Ok(Obb {
+                axes: Mat3::identity(),
+                center: Vec3::zeros(),
+                half: Vec3::new(size(d[0])?, size(d[1])?, size(d[2])?),
+            })
+        };
+        let (a, b) = (about_origin(&b1.d)?, about_origin(&b2.d)?);
+        overlap.write(c_int::from(Obb::overlap(&a, &b, &rel)));
+        Ok(())
     }
-    let rel = read_placement(R, T)?;
-    let (b1, b2) = (deref(b1)?, deref(b2)?);
-    let about_origin = |d: &[f64; 3]| -> Result<Obb, Error> {
-        Ok(Obb {
-            axes: Mat3::identity(),
-            center: Vec3::zeros(),
-            half: Vec3::new(size(d[0])?, size(d[1])?, size(d[2])?),
-        })
-    };
-    let (a, b) = (about_origin(&b1.d)?, about_origin(&b2.d)?);
-    overlap.write(c_int::from(Obb::overlap(&a, &b, &rel)));
-    Ok(())
 }
 
 /// PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
@@ -638,7 +654,7 @@ unsafe fn boxes_overlap(
 ///         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
 ///         negative; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_bv_distance(
     distance: *mut f64,
     R: *const f64,
@@ -646,11 +662,14 @@ pub unsafe extern "C" fn pqp_bv_distance(
     b1: *const pqp_bv,
     b2: *const pqp_bv,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || {},
-        || code(volumes_distance(distance, R, T, b1, b2)),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            PQP_ERR_INTERNAL,
+            || {},
+            || code(volumes_distance(distance, R, T, b1, b2)),
+        )
+    }
 }
 
 /// The body of pqp_bv_distance.
@@ -664,16 +683,19 @@ unsafe fn volumes_distance(
     b1: *const pqp_bv,
     b2: *const pqp_bv,
 ) -> Result<(), Error> {
-    if distance.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if distance.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let rel = read_placement(R, T)?;
+        let (b1, b2) = (deref(b1)?, deref(b2)?);
+        let l1 = [size(b1.l[0])?, size(b1.l[1])?];
+        let l2 = [size(b2.l[0])?, size(b2.l[1])?];
+        let radii = size(b1.r)? + size(b2.r)?;
+        // Exact: no early stop (enough 0), no cutoff.
+        let (d, _) = rect_distance(&rel.rot, &rel.trans, l1, l2, 0.0, f64::INFINITY, true);
+        distance.write(d - radii);
+        Ok(())
     }
-    let rel = read_placement(R, T)?;
-    let (b1, b2) = (deref(b1)?, deref(b2)?);
-    let l1 = [size(b1.l[0])?, size(b1.l[1])?];
-    let l2 = [size(b2.l[0])?, size(b2.l[1])?];
-    let radii = size(b1.r)? + size(b2.r)?;
-    // Exact: no early stop (enough 0), no cutoff.
-    let (d, _) = rect_distance(&rel.rot, &rel.trans, l1, l2, 0.0, f64::INFINITY, true);
-    distance.write(d - radii);
-    Ok(())
 }

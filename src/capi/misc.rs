@@ -37,7 +37,7 @@ fn error_text(code: c_int) -> &'static std::ffi::CStr {
 /// @return a static NUL-terminated English text, never NULL; "unknown error code" for a value that
 ///         is not a PQP code. The caller must not free it.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_error_string(code: c_int) -> *const c_char {
     boundary(
         c"internal error".as_ptr(),
@@ -51,7 +51,7 @@ pub extern "C" fn pqp_error_string(code: c_int) -> *const c_char {
 /// @return a static NUL-terminated text "MAJOR.MINOR.PATCH" (for this release "1.0.0"), never
 ///         NULL. The caller must not free it.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_version() -> *const c_char {
     const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "\0");
     boundary(c"1.0.0".as_ptr(), || {}, || VERSION.as_ptr().cast())
@@ -95,10 +95,12 @@ mod tests {
         ];
         for (e, c) in all.iter().zip(constants) {
             assert_eq!(e.code(), c);
+            // SAFETY: pqp_error_string returns a static NUL-terminated string for any code.
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), e.message());
         }
         for c in [1, 2, -13, i32::MIN, i32::MAX] {
+            // SAFETY: pqp_error_string returns a static NUL-terminated string for any code.
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), "unknown error code");
         }
@@ -106,6 +108,7 @@ mod tests {
 
     #[test]
     fn version_is_the_package_version() {
+        // SAFETY: pqp_version returns a static NUL-terminated string.
         let v = unsafe { CStr::from_ptr(pqp_version()) };
         assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
     }

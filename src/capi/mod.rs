@@ -52,7 +52,8 @@ pub use tolerance::*;
 
 use crate::error::Error;
 use crate::math::Pose;
-use crate::query::{Search, Stats, Strategy};
+use crate::model::Model;
+use crate::query::{Search, Strategy};
 use std::cell::Cell;
 use std::ffi::c_int;
 use std::panic::{self, AssertUnwindSafe};
@@ -207,13 +208,29 @@ pub(crate) fn into_handle<T>(value: T) -> *mut T {
     p
 }
 
+/// The body of every `pqp_*_create` of a result or cache: a fresh object's handle, NULL if
+/// memory could not be allocated.
+pub(crate) fn new_handle<T: Default>() -> *mut T {
+    boundary(std::ptr::null_mut(), || {}, || into_handle(T::default()))
+}
+
+/// The body of every `pqp_*_destroy`: frees the handle; NULL is accepted and ignored.
+///
+/// # Safety
+/// As [`free_handle`].
+pub(crate) unsafe fn destroy_handle<T>(h: *mut T) {
+    // SAFETY: `h` is NULL or a handle of `T` not freed before (this function's contract).
+    boundary((), || {}, || unsafe { free_handle(h) })
+}
+
 /// Frees a handle made by [`into_handle`]; NULL is accepted and ignored.
 ///
 /// # Safety
 /// `h` is NULL or a pointer returned by `into_handle::<T>` not freed before.
 pub(crate) unsafe fn free_handle<T>(h: *mut T) {
     if !h.is_null() {
-        drop(Box::from_raw(h));
+        // SAFETY: `h` came from `into_handle::<T>` (a `Box<T>` allocation) and is freed once.
+        drop(unsafe { Box::from_raw(h) });
     }
 }
 
@@ -222,7 +239,8 @@ pub(crate) unsafe fn free_handle<T>(h: *mut T) {
 /// # Safety
 /// `h` is NULL or a live handle (the caller's contract, see the header).
 pub(crate) unsafe fn deref<'a, T>(h: *const T) -> Result<&'a T, Error> {
-    h.as_ref().ok_or(Error::NullPointer)
+    // SAFETY: `h` is NULL (then `as_ref` gives `None`) or a live handle.
+    unsafe { h.as_ref() }.ok_or(Error::NullPointer)
 }
 
 /// The object behind a handle for modification, or `Err(NullPointer)`.
@@ -230,7 +248,8 @@ pub(crate) unsafe fn deref<'a, T>(h: *const T) -> Result<&'a T, Error> {
 /// # Safety
 /// As [`deref`], and no other reference to the object is alive (the caller's contract).
 pub(crate) unsafe fn deref_mut<'a, T>(h: *mut T) -> Result<&'a mut T, Error> {
-    h.as_mut().ok_or(Error::NullPointer)
+    // SAFETY: `h` is NULL or a live handle with no other reference to its object.
+    unsafe { h.as_mut() }.ok_or(Error::NullPointer)
 }
 
 /// Copies `N` doubles from C, or `Err(NullPointer)`.
@@ -242,7 +261,8 @@ pub(crate) unsafe fn read_doubles<const N: usize>(p: *const f64) -> Result<[f64;
         return Err(Error::NullPointer);
     }
     // C arrays of double are aligned, but nothing is lost by not relying on it.
-    Ok(p.cast::<[f64; N]>().read_unaligned())
+    // SAFETY: `p` is not NULL, so it points to `N` readable doubles.
+    Ok(unsafe { p.cast::<[f64; N]>().read_unaligned() })
 }
 
 /// A pose from C: `r` 9 doubles row by row, `t` 3 doubles.
@@ -250,8 +270,8 @@ pub(crate) unsafe fn read_doubles<const N: usize>(p: *const f64) -> Result<[f64;
 /// # Safety
 /// Each pointer is NULL or points to that many doubles.
 pub(crate) unsafe fn read_pose(r: *const f64, t: *const f64) -> Result<Pose, Error> {
-    let r: [f64; 9] = read_doubles(r)?;
-    let t: [f64; 3] = read_doubles(t)?;
+    // SAFETY: `r` is NULL or points to 9 doubles, `t` NULL or to 3.
+    let (r, t): ([f64; 9], [f64; 3]) = unsafe { (read_doubles(r)?, read_doubles(t)?) };
     Ok(Pose::new(
         [[r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]],
         t,
@@ -265,25 +285,13 @@ pub(crate) const DEFAULT_SEARCH_OPTIONS: pqp_search_options = pqp_search_options
     triangle_cache: 1,
 };
 
-/// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
-pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
-
-/// The search of pqp_distance and pqp_tolerance, given PQP's queue size (at least 1): the default
-/// search; the size is only checked.
-pub(crate) fn default_search(qsize: c_int) -> Result<Search, Error> {
-    if qsize >= 1 {
-        Ok(Search::default())
-    } else {
-        Err(Error::InvalidArgument)
-    }
-}
-
 /// A search from C's options; NULL means the default search.
 ///
 /// # Safety
 /// `o` is NULL or points to a `pqp_search_options`.
 pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search, Error> {
-    let Some(o) = o.as_ref() else {
+    // SAFETY: `o` is NULL or points to a `pqp_search_options`.
+    let Some(o) = (unsafe { o.as_ref() }) else {
         return Ok(Search::default());
     };
     let strategy = match o.strategy {
@@ -309,23 +317,92 @@ pub(crate) unsafe fn read_search(o: *const pqp_search_options) -> Result<Search,
     })
 }
 
+/// A posed model as C passes it: rotation (9 doubles), translation (3 doubles), model.
+pub(crate) type PosedModel = (*const f64, *const f64, *const pqp_model);
+
+/// How a distance or tolerance entry point takes its search from C.
+#[derive(Clone, Copy)]
+pub(crate) enum SearchArg {
+    /// PQP's queue size (pqp_distance, pqp_tolerance): at least 1, only checked; the default search.
+    QueueSize(c_int),
+    /// A `pqp_search_options` (pqp_distance_search, pqp_tolerance_search); NULL: the default.
+    Options(*const pqp_search_options),
+}
+
+impl SearchArg {
+    /// The search asked for, or `Err(InvalidArgument)`.
+    ///
+    /// # Safety
+    /// An `Options` pointer is NULL or points to a `pqp_search_options`.
+    unsafe fn read(self) -> Result<Search, Error> {
+        match self {
+            SearchArg::QueueSize(q) if q >= 1 => Ok(Search::default()),
+            SearchArg::QueueSize(_) => Err(Error::InvalidArgument),
+            // SAFETY: NULL or a `pqp_search_options` (this function's contract).
+            SearchArg::Options(o) => unsafe { read_search(o) },
+        }
+    }
+}
+
+/// The checked arguments of a distance or tolerance query, as [`pair_query`] hands them on.
+pub(crate) struct PairArgs<'a> {
+    pub(crate) m1: &'a Model,
+    pub(crate) pose1: Pose,
+    pub(crate) m2: &'a Model,
+    pub(crate) pose2: Pose,
+    pub(crate) search: Search,
+}
+
+/// Runs a distance or tolerance entry point: inside [`boundary`] (an internal fault resets `r`),
+/// checks the result, each posed model (pointers, then pose entries) and the search, in that order,
+/// and hands them to `run`, whose code it returns. The query's own arguments (error bounds,
+/// tolerance) are checked by the core query `run` calls.
+///
+/// # Safety
+/// Every pointer is NULL or valid as the header requires: `r` a live result no other call uses,
+/// poses 9 and 3 doubles, models live handles, search options as [`SearchArg::read`] needs.
+pub(crate) unsafe fn pair_query<R: Default>(
+    r: *mut R,
+    (r1, t1, m1): PosedModel,
+    (r2, t2, m2): PosedModel,
+    search: SearchArg,
+    run: impl FnOnce(&mut R, PairArgs<'_>) -> Result<(), Error>,
+) -> c_int {
+    let checked = || -> Result<(), Error> {
+        // SAFETY: every pointer is NULL or valid (this function's contract).
+        let (result, args) = unsafe {
+            let result = deref_mut(r)?;
+            let (pose1, m1) = (read_pose(r1, t1)?, deref(m1)?);
+            let (pose2, m2) = (read_pose(r2, t2)?, deref(m2)?);
+            let search = search.read()?;
+            let (m1, m2) = (&m1.model, &m2.model);
+            (
+                result,
+                PairArgs {
+                    m1,
+                    pose1,
+                    m2,
+                    pose2,
+                    search,
+                },
+            )
+        };
+        run(result, args)
+    };
+    // SAFETY: `r` is NULL or a live result (this function's contract).
+    boundary(PQP_ERR_INTERNAL, || unsafe { reset(r) }, || code(checked()))
+}
+
 /// Resets a result to its freshly created state after an internal fault, so that C never sees a
 /// half-written answer.
 ///
 /// # Safety
 /// `r` is NULL or a live handle.
 pub(crate) unsafe fn reset<T: Default>(r: *mut T) {
-    if let Ok(r) = deref_mut(r) {
+    // SAFETY: `r` is NULL or a live handle (this function's contract).
+    if let Ok(r) = unsafe { deref_mut(r) } {
         *r = T::default();
     }
-}
-
-/// The work counters of a result, for the statistics getters; `None` for NULL.
-///
-/// # Safety
-/// `r` is NULL or a live handle of its kind.
-pub(crate) unsafe fn stat<T>(r: *const T, get: impl FnOnce(&T) -> Stats) -> Option<Stats> {
-    deref(r).ok().map(get)
 }
 
 /// Writes a triangle pair to C, or `Err(NullPointer)` (writing nothing) if a pointer is NULL.
@@ -341,9 +418,26 @@ pub(crate) unsafe fn write_pair(
     if t1.is_null() || t2.is_null() {
         return Err(Error::NullPointer);
     }
-    t1.write(a);
-    t2.write(b);
+    // SAFETY: neither pointer is NULL, so both are writable (this function's contract).
+    unsafe {
+        t1.write(a);
+        t2.write(b);
+    }
     Ok(())
+}
+
+/// Runs a result getter: inside [`boundary`], `get` of the object behind `r`, or `fallback` when
+/// `r` is NULL (or `get` panics). Every `pqp_*_result_*` getter is one call of this.
+///
+/// # Safety
+/// `r` is NULL or a live handle of its kind, not modified during the call.
+pub(crate) unsafe fn getter<T, V: Copy>(r: *const T, fallback: V, get: impl FnOnce(&T) -> V) -> V {
+    boundary(
+        fallback,
+        || {},
+        // SAFETY: `r` is NULL or a live handle (this function's contract).
+        || unsafe { deref(r) }.map_or(fallback, get),
+    )
 }
 
 /// A counter for C's `int64_t` (saturating; no query performs 2^63 tests).

@@ -2,7 +2,7 @@
 
 use super::legacy::LegacyView;
 use super::{
-    boundary, code, deref, deref_mut, free_handle, into_handle, read_doubles, status,
+    boundary, code, deref, deref_mut, destroy_handle, into_handle, read_doubles, status,
     PQP_ERR_INTERNAL,
 };
 use crate::error::Error;
@@ -53,7 +53,7 @@ const _: () = {
 /// @return a new model, to be freed with pqp_model_destroy; NULL only if memory could not be
 ///         allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_model_create() -> *mut pqp_model {
     boundary(
         std::ptr::null_mut(),
@@ -72,9 +72,10 @@ pub extern "C" fn pqp_model_create() -> *mut pqp_model {
 /// @param m  a model from pqp_model_create, or NULL (then nothing happens). It must not be used
 ///           afterwards.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
-    boundary((), || {}, || free_handle(m))
+    // SAFETY: m is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(m) }
 }
 
 /// Makes a deep, independent copy of a model, in whatever state it is: empty, being built (the
@@ -88,17 +89,20 @@ pub unsafe extern "C" fn pqp_model_destroy(m: *mut pqp_model) {
 ///         copy could not be allocated; PQP_ERR_INTERNAL on an internal fault (*out is then NULL).
 /// Thread safety: may run concurrently with queries and getters on m (a built model may be copied
 ///                while other threads query it), not with build calls on m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_clone(out: *mut *mut pqp_model, m: *const pqp_model) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || {
-            if !out.is_null() {
-                out.write(std::ptr::null_mut());
-            }
-        },
-        || code(clone_into(out, m)),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            PQP_ERR_INTERNAL,
+            || {
+                if !out.is_null() {
+                    out.write(std::ptr::null_mut());
+                }
+            },
+            || code(clone_into(out, m)),
+        )
+    }
 }
 
 /// The body of pqp_model_clone: NULL in `out` until the copy is made, so that no error leaves a
@@ -107,21 +111,24 @@ pub unsafe extern "C" fn pqp_model_clone(out: *mut *mut pqp_model, m: *const pqp
 /// # Safety
 /// `out` is NULL or points to a writable `pqp_model *`; `m` is NULL or a live handle.
 unsafe fn clone_into(out: *mut *mut pqp_model, m: *const pqp_model) -> Result<(), Error> {
-    if out.is_null() {
-        return Err(Error::NullPointer);
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        if out.is_null() {
+            return Err(Error::NullPointer);
+        }
+        out.write(std::ptr::null_mut());
+        // The views are not copied: the copy makes its own on request.
+        let copy = pqp_model {
+            model: deref(m)?.model.try_clone()?,
+            view: LegacyView::default(),
+        };
+        let h = into_handle(copy);
+        if h.is_null() {
+            return Err(Error::ModelOutOfMemory);
+        }
+        out.write(h);
+        Ok(())
     }
-    out.write(std::ptr::null_mut());
-    // The views are not copied: the copy makes its own on request.
-    let copy = pqp_model {
-        model: deref(m)?.model.try_clone()?,
-        view: LegacyView::default(),
-    };
-    let h = into_handle(copy);
-    if h.is_null() {
-        return Err(Error::ModelOutOfMemory);
-    }
-    out.write(h);
-    Ok(())
 }
 
 /// Where a model is in PQP's build protocol (PQP 1.3's build_state).
@@ -133,19 +140,22 @@ unsafe fn clone_into(out: *mut *mut pqp_model, m: *const pqp_model) -> Result<()
 ///         refused its triangle) until a successful pqp_model_end; PQP_BUILD_STATE_PROCESSED (2)
 ///         once built; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_build_state(m: *const pqp_model) -> c_int {
-    boundary(
-        PQP_BUILD_STATE_EMPTY,
-        || {},
-        || {
-            deref(m).map_or(PQP_BUILD_STATE_EMPTY, |m| match m.model.build_state() {
-                BuildState::Empty => PQP_BUILD_STATE_EMPTY,
-                BuildState::Begun => PQP_BUILD_STATE_BEGUN,
-                BuildState::Built => PQP_BUILD_STATE_PROCESSED,
-            })
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            PQP_BUILD_STATE_EMPTY,
+            || {},
+            || {
+                deref(m).map_or(PQP_BUILD_STATE_EMPTY, |m| match m.model.build_state() {
+                    BuildState::Empty => PQP_BUILD_STATE_EMPTY,
+                    BuildState::Begun => PQP_BUILD_STATE_BEGUN,
+                    BuildState::Built => PQP_BUILD_STATE_PROCESSED,
+                })
+            },
+        )
+    }
 }
 
 /// Starts building a model (PQP's BeginModel).
@@ -158,13 +168,16 @@ pub unsafe extern "C" fn pqp_model_build_state(m: *const pqp_model) -> c_int {
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_BUILD_OUT_OF_SEQUENCE as above;
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int) -> c_int {
-    status(|| {
-        let m = deref_mut(m)?;
-        m.view.begun();
-        m.model.begin(usize::try_from(num_tris_hint).unwrap_or(0))
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = deref_mut(m)?;
+            m.view.begun();
+            m.model.begin(usize::try_from(num_tris_hint).unwrap_or(0))
+        })
+    }
 }
 
 /// Adds a triangle to a model being built (PQP's AddTri).
@@ -186,7 +199,7 @@ pub unsafe extern "C" fn pqp_model_begin(m: *mut pqp_model, num_tris_hint: c_int
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY if the triangle could not be stored;
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_add_tri(
     m: *mut pqp_model,
     p1: *const f64,
@@ -194,16 +207,19 @@ pub unsafe extern "C" fn pqp_model_add_tri(
     p3: *const f64,
     id: c_int,
 ) -> c_int {
-    status(|| {
-        let m = deref_mut(m)?;
-        let (a, b, c) = (read_doubles(p1)?, read_doubles(p2)?, read_doubles(p3)?);
-        let before = m.model.num_triangles();
-        let result = m.model.add_triangle(a, b, c, id);
-        let stored = m.model.num_triangles() > before;
-        m.view
-            .added(stored.then(|| ([a.into(), b.into(), c.into()], id)));
-        result
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = deref_mut(m)?;
+            let (a, b, c) = (read_doubles(p1)?, read_doubles(p2)?, read_doubles(p3)?);
+            let before = m.model.num_triangles();
+            let result = m.model.add_triangle(a, b, c, id);
+            let stored = m.model.num_triangles() > before;
+            m.view
+                .added(stored.then(|| ([a.into(), b.into(), c.into()], id)));
+            result
+        })
+    }
 }
 
 /// Finishes a model: builds its bounding-volume hierarchy (PQP's EndModel). After it the model is
@@ -217,12 +233,15 @@ pub unsafe extern "C" fn pqp_model_add_tri(
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY if the hierarchy could not be allocated; PQP_ERR_INTERNAL
 ///         on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
-    status(|| {
-        // PQP 1.3's views stay (see LegacyView).
-        deref_mut(m)?.model.end()
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            // PQP 1.3's views stay (see LegacyView).
+            deref_mut(m)?.model.end()
+        })
+    }
 }
 
 /// Chooses the swept sphere volume a model's hierarchy is built with, for distance and tolerance
@@ -236,19 +255,22 @@ pub unsafe extern "C" fn pqp_model_end(m: *mut pqp_model) -> c_int {
 ///         those (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built
 ///         (the choice is not changed); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_set_volume(m: *mut pqp_model, kind: c_int) -> c_int {
-    status(|| {
-        let m = deref_mut(m)?;
-        let kind = match kind {
-            PQP_BV_RSS => VolumeKind::Rss,
-            PQP_BV_PSS => VolumeKind::Pss,
-            PQP_BV_LSS => VolumeKind::Lss,
-            PQP_BV_HYBRID => VolumeKind::Hybrid,
-            _ => return Err(Error::InvalidArgument),
-        };
-        m.model.set_volume(kind)
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = deref_mut(m)?;
+            let kind = match kind {
+                PQP_BV_RSS => VolumeKind::Rss,
+                PQP_BV_PSS => VolumeKind::Pss,
+                PQP_BV_LSS => VolumeKind::Lss,
+                PQP_BV_HYBRID => VolumeKind::Hybrid,
+                _ => return Err(Error::InvalidArgument),
+            };
+            m.model.set_volume(kind)
+        })
+    }
 }
 
 /// Chooses the volume collision queries test a model's nodes with. Call it before pqp_model_end;
@@ -262,17 +284,20 @@ pub unsafe extern "C" fn pqp_model_set_volume(m: *mut pqp_model, kind: c_int) ->
 ///         (the choice is not changed); PQP_ERR_BUILD_OUT_OF_SEQUENCE if the model is built (the
 ///         choice is not changed); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: must not run concurrently with any other call using m.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_set_collision_volume(m: *mut pqp_model, volume: c_int) -> c_int {
-    status(|| {
-        let m = deref_mut(m)?;
-        let volume = match volume {
-            PQP_COLLIDE_OBB => CollisionVolume::Obb,
-            PQP_COLLIDE_SSV => CollisionVolume::Ssv,
-            _ => return Err(Error::InvalidArgument),
-        };
-        m.model.set_collision_volume(volume)
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let m = deref_mut(m)?;
+            let volume = match volume {
+                PQP_COLLIDE_OBB => CollisionVolume::Obb,
+                PQP_COLLIDE_SSV => CollisionVolume::Ssv,
+                _ => return Err(Error::InvalidArgument),
+            };
+            m.model.set_collision_volume(volume)
+        })
+    }
 }
 
 /// The number of triangles a model holds (added so far, or in the built model).
@@ -280,17 +305,20 @@ pub unsafe extern "C" fn pqp_model_set_collision_volume(m: *mut pqp_model, volum
 /// @param m  the model, or NULL.
 /// @return the count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_num_tris(m: *const pqp_model) -> c_int {
-    boundary(
-        0,
-        || {},
-        || match deref(m) {
-            // The build protocol refuses a triangle beyond i32::MAX, so this never clamps.
-            Ok(m) => c_int::try_from(m.model.num_triangles()).unwrap_or(c_int::MAX),
-            Err(_) => 0,
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            0,
+            || {},
+            || match deref(m) {
+                // The build protocol refuses a triangle beyond i32::MAX, so this never clamps.
+                Ok(m) => c_int::try_from(m.model.num_triangles()).unwrap_or(c_int::MAX),
+                Err(_) => 0,
+            },
+        )
+    }
 }
 
 /// The memory a model holds, in bytes (triangles, hierarchy and bookkeeping), including PQP
@@ -300,19 +328,22 @@ pub unsafe extern "C" fn pqp_model_num_tris(m: *const pqp_model) -> c_int {
 /// @param m  the model, or NULL.
 /// @return the byte count; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_memory_usage(m: *const pqp_model) -> u64 {
-    boundary(
-        0,
-        || {},
-        || {
-            deref(m).map_or(0, |m| {
-                // The handle beyond the model, and the views' arrays.
-                let extra = std::mem::size_of::<pqp_model>() - std::mem::size_of::<Model>();
-                m.model.memory_usage() + (extra + m.view.memory_usage()) as u64
-            })
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            0,
+            || {},
+            || {
+                deref(m).map_or(0, |m| {
+                    // The handle beyond the model, and the views' arrays.
+                    let extra = std::mem::size_of::<pqp_model>() - std::mem::size_of::<Model>();
+                    m.model.memory_usage() + (extra + m.view.memory_usage()) as u64
+                })
+            },
+        )
+    }
 }
 
 /// Whether a model is built (its last pqp_model_end succeeded) and can be queried.
@@ -320,11 +351,14 @@ pub unsafe extern "C" fn pqp_model_memory_usage(m: *const pqp_model) -> u64 {
 /// @param m  the model, or NULL.
 /// @return 1 if built, else 0; 0 if m is NULL.
 /// Thread safety: may run concurrently with queries and other getters on m, not with build calls.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_model_is_built(m: *const pqp_model) -> c_int {
-    boundary(
-        0,
-        || {},
-        || deref(m).map_or(0, |m| c_int::from(m.model.is_built())),
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        boundary(
+            0,
+            || {},
+            || deref(m).map_or(0, |m| c_int::from(m.model.is_built())),
+        )
+    }
 }

@@ -5,12 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, default_search, deref, deref_mut, free_handle, into_handle, pqp_model,
-    pqp_search_options, read_pose, read_search, reset, stat, status, write_pair, PosedModel,
-    PQP_ERR_INTERNAL,
+    count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model, pqp_search_options,
+    status, write_pair, PosedModel, SearchArg,
 };
-use crate::error::Error;
-use crate::query::{tolerance_into, Search, ToleranceResult};
+use crate::query::{tolerance_into, ToleranceResult};
 use std::ffi::c_int;
 use std::ptr;
 
@@ -27,22 +25,19 @@ pub struct pqp_tolerance_result {
 /// @return a new result, to be freed with pqp_tolerance_result_destroy; NULL only if memory could
 ///         not be allocated.
 /// Thread safety: may be called from any thread at any time.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub extern "C" fn pqp_tolerance_result_create() -> *mut pqp_tolerance_result {
-    boundary(
-        ptr::null_mut(),
-        || {},
-        || into_handle(pqp_tolerance_result::default()),
-    )
+    new_handle::<pqp_tolerance_result>()
 }
 
 /// Frees a tolerance result.
 ///
 /// @param r  a result from pqp_tolerance_result_create, or NULL (then nothing happens).
 /// Thread safety: must not run concurrently with any other call using r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_result) {
-    boundary((), || {}, || free_handle(r))
+    // SAFETY: r is NULL or a live handle of its kind, used by no other call (the caller's contract).
+    unsafe { destroy_handle(r) }
 }
 
 /// Decides whether two posed models are within a distance of each other (PQP_Tolerance).
@@ -67,7 +62,7 @@ pub unsafe extern "C" fn pqp_tolerance_result_destroy(r: *mut pqp_tolerance_resu
 ///         created state). On any other error r is left unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads;
 ///                r must not be used by another thread during the call.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance(
     r: *mut pqp_tolerance_result,
     R1: *const f64,
@@ -79,19 +74,16 @@ pub unsafe extern "C" fn pqp_tolerance(
     tolerance: f64,
     qsize: c_int,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || reset(r),
-        || {
-            code(tolerance_with(
-                r,
-                (R1, T1, m1),
-                (R2, T2, m2),
-                tolerance,
-                default_search(qsize),
-            ))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        tolerance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            tolerance,
+            SearchArg::QueueSize(qsize),
+        )
+    }
 }
 
 /// As pqp_tolerance, with the search chosen by options (NULL: the default search).
@@ -108,7 +100,7 @@ pub unsafe extern "C" fn pqp_tolerance(
 /// @return PQP_OK, or as pqp_tolerance (PQP_ERR_NULL_POINTER, ...); PQP_ERR_INVALID_ARGUMENT also
 ///         for an unknown strategy, a negative queue size, or a triangle_cache other than 0 or 1.
 /// Thread safety: as pqp_tolerance.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_search(
     r: *mut pqp_tolerance_result,
     R1: *const f64,
@@ -120,41 +112,43 @@ pub unsafe extern "C" fn pqp_tolerance_search(
     tolerance: f64,
     options: *const pqp_search_options,
 ) -> c_int {
-    boundary(
-        PQP_ERR_INTERNAL,
-        || reset(r),
-        || {
-            code(tolerance_with(
-                r,
-                (R1, T1, m1),
-                (R2, T2, m2),
-                tolerance,
-                read_search(options),
-            ))
-        },
-    )
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        tolerance_query(
+            r,
+            (R1, T1, m1),
+            (R2, T2, m2),
+            tolerance,
+            SearchArg::Options(options),
+        )
+    }
 }
 
-/// The body of pqp_tolerance and pqp_tolerance_search.
-unsafe fn tolerance_with(
+/// The body of pqp_tolerance and pqp_tolerance_search, which differ in how they give the search.
+///
+/// # Safety
+/// As the entry points': every pointer NULL or valid as the header requires.
+unsafe fn tolerance_query(
     r: *mut pqp_tolerance_result,
-    (R1, T1, m1): PosedModel,
-    (R2, T2, m2): PosedModel,
+    one: PosedModel,
+    two: PosedModel,
     tolerance: f64,
-    search: Result<Search, Error>,
-) -> Result<(), Error> {
-    let result = deref_mut(r)?;
-    let (pose1, m1) = (read_pose(R1, T1)?, deref(m1)?);
-    let (pose2, m2) = (read_pose(R2, T2)?, deref(m2)?);
-    tolerance_into(
-        &mut result.result,
-        &m1.model,
-        &pose1,
-        &m2.model,
-        &pose2,
-        tolerance,
-        &search?,
-    )
+    search: SearchArg,
+) -> c_int {
+    // SAFETY: the pointers are as pair_query requires (this function's contract).
+    unsafe {
+        pair_query(r, one, two, search, |r, q| {
+            tolerance_into(
+                &mut r.result,
+                q.m1,
+                &q.pose1,
+                q.m2,
+                &q.pose2,
+                tolerance,
+                &q.search,
+            )
+        })
+    }
 }
 
 /// Whether the last pqp_tolerance on r found the models within the tolerance (distance <=
@@ -163,15 +157,12 @@ unsafe fn tolerance_with(
 /// @param r  the result, or NULL.
 /// @return 1 if closer than (or at) the tolerance, else 0 (also before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_closer_than_tolerance(
     r: *const pqp_tolerance_result,
 ) -> c_int {
-    boundary(
-        0,
-        || {},
-        || deref(r).map_or(0, |r| c_int::from(r.result.closer_than_tolerance)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| c_int::from(r.result.closer_than_tolerance)) }
 }
 
 /// A distance found by the last pqp_tolerance on r.
@@ -183,13 +174,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_closer_than_tolerance(
 /// @param r  the result, or NULL.
 /// @return the distance; +infinity before any query; NaN if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_distance(r: *const pqp_tolerance_result) -> f64 {
-    boundary(
-        f64::NAN,
-        || {},
-        || deref(r).map_or(f64::NAN, |r| r.result.distance),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, f64::NAN, |r| r.result.distance) }
 }
 
 /// The tolerance the last pqp_tolerance on r was asked about.
@@ -197,13 +185,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_distance(r: *const pqp_tolerance_r
 /// @param r  the result, or NULL.
 /// @return the tolerance; 0 before any query; NaN if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_tolerance(r: *const pqp_tolerance_result) -> f64 {
-    boundary(
-        f64::NAN,
-        || {},
-        || deref(r).map_or(f64::NAN, |r| r.result.tolerance),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, f64::NAN, |r| r.result.tolerance) }
 }
 
 /// When the last pqp_tolerance on r found the models closer than the tolerance: the point on
@@ -213,13 +198,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_tolerance(r: *const pqp_tolerance_
 /// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; NULL if r
 ///         is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_p1(r: *const pqp_tolerance_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || deref(r).map_or(ptr::null(), |r| r.result.p1.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.result.p1.as_ptr()) }
 }
 
 /// When the last pqp_tolerance on r found the models closer than the tolerance: the point on
@@ -229,13 +211,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_p1(r: *const pqp_tolerance_result)
 /// @return 3 doubles (x, y, z), owned by r and valid until r is modified or destroyed; NULL if r
 ///         is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_p2(r: *const pqp_tolerance_result) -> *const f64 {
-    boundary(
-        ptr::null(),
-        || {},
-        || deref(r).map_or(ptr::null(), |r| r.result.p2.as_ptr()),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, ptr::null(), |r| r.result.p2.as_ptr()) }
 }
 
 /// When the last pqp_tolerance on r found the models closer than the tolerance: the triangles of
@@ -249,16 +228,19 @@ pub unsafe extern "C" fn pqp_tolerance_result_p2(r: *const pqp_tolerance_result)
 /// @return PQP_OK (also when there is no pair, with -1 in both); PQP_ERR_NULL_POINTER if r, t1 or
 ///         t2 is NULL (nothing is written); PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_triangles(
     r: *const pqp_tolerance_result,
     t1: *mut c_int,
     t2: *mut c_int,
 ) -> c_int {
-    status(|| {
-        let r = &deref(r)?.result;
-        write_pair(t1, t2, r.tri1, r.tri2)
-    })
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe {
+        status(|| {
+            let r = &deref(r)?.result;
+            write_pair(t1, t2, r.tri1, r.tri2)
+        })
+    }
 }
 
 /// The number of bounding-volume distance tests the last pqp_tolerance on r performed.
@@ -266,13 +248,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_triangles(
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_num_bv_tests(r: *const pqp_tolerance_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.bv_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.bv_tests)) }
 }
 
 /// The number of triangle-pair distance tests the last pqp_tolerance on r performed.
@@ -280,13 +259,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_num_bv_tests(r: *const pqp_toleran
 /// @param r  the result, or NULL.
 /// @return the count (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_num_tri_tests(r: *const pqp_tolerance_result) -> i64 {
-    boundary(
-        0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0, |s| count(s.tri_tests)),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0, |r| count(r.result.stats.tri_tests)) }
 }
 
 /// The wall-clock time of the last pqp_tolerance on r.
@@ -294,13 +270,10 @@ pub unsafe extern "C" fn pqp_tolerance_result_num_tri_tests(r: *const pqp_tolera
 /// @param r  the result, or NULL.
 /// @return seconds (0 before any query); 0 if r is NULL.
 /// Thread safety: may run concurrently with other getters on r, not with calls that modify r.
-#[no_mangle]
+#[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_tolerance_result_query_time_secs(
     r: *const pqp_tolerance_result,
 ) -> f64 {
-    boundary(
-        0.0,
-        || {},
-        || stat(r, |r| r.result.stats).map_or(0.0, |s| s.query_time_secs),
-    )
+    // SAFETY: r is NULL or a live result that no other call modifies meanwhile (the caller's contract).
+    unsafe { getter(r, 0.0, |r| r.result.stats.query_time_secs) }
 }

@@ -322,10 +322,10 @@ fn face_edge_nearest(
     for (pl, e) in m.face_side_planes(f) {
         let ed = &m.edges[e.index as usize];
         let (d, q) = near(m.vert(ed.tail), m.vert(ed.head));
-        if any.map_or(true, |(bd, _)| d < bd) {
+        if any.is_none_or(|(bd, _)| d < bd) {
             any = Some((d, e));
         }
-        if pl.eval(&q) < 0.0 && best.map_or(true, |(bd, _)| d < bd) {
+        if pl.eval(&q) < 0.0 && best.is_none_or(|(bd, _)| d < bd) {
             best = Some((d, e));
         }
     }
@@ -414,7 +414,7 @@ fn vf(x: &Side, vx: u32, y: &Side, fy: u32, ctr: &mut Counters) -> Step {
             let dw = plane.eval(&y.import(pw));
             if dw < d {
                 let slope = (dw - d) / (pw - px).norm();
-                if best.map_or(true, |(s, _)| slope < s) {
+                if best.is_none_or(|(s, _)| slope < s) {
                     best = Some((slope, f));
                 }
             }

@@ -153,14 +153,15 @@ fn closest(
     oa: Sides,
     ob: Sides,
 ) -> ClosestPoints {
-    if !ob.separated() && !oa.separated() {
-        if let Some(x) = intersect::<true>(a, b, oa, ob) {
-            return ClosestPoints {
-                distance: 0.0,
-                p: x,
-                q: x,
-            };
-        }
+    if !ob.separated()
+        && !oa.separated()
+        && let Some(x) = intersect::<true>(a, b, oa, ob)
+    {
+        return ClosestPoints {
+            distance: 0.0,
+            p: x,
+            q: x,
+        };
     }
     // Disjoint: a closest pair has a point on an edge of each, or a vertex of one whose
     // projection falls inside the other's face.
@@ -422,7 +423,7 @@ mod tests {
     fn pair(rng: &mut Lcg, k: usize) -> (Tri, Tri) {
         let scale = [1.0, 1e-160, 1e160, 1e3][k % 4];
         let a: Tri = [0, 1, 2].map(|_| point(rng, 1.0));
-        let b = if k % 3 == 0 {
+        let b = if k.is_multiple_of(3) {
             [0, 1, 2].map(|_| point(rng, 1.0))
         } else {
             let n = (a[1] - a[0]).cross(&(a[2] - a[0])).normalize();
@@ -430,7 +431,7 @@ mod tests {
             a.map(|v| v + lift + point(rng, 0.2))
         };
         let (a, b) = (a.map(|v| v * scale), b.map(|v| v * scale));
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             (a, b)
         } else {
             (b, a)
