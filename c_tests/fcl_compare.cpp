@@ -26,7 +26,7 @@ using PairSet = std::set<std::pair<int, int>>;
 std::shared_ptr<FclModel> fcl_model(const Mesh &m) {
     auto g = std::make_shared<FclModel>();
     g->beginModel(static_cast<int>(m.tris.size()), static_cast<int>(3 * m.tris.size()));
-    for (const Tri &t : m.tris)  // one addTriangle per triangle: FCL's primitive index = our id
+    for (const ht::Tri &t : m.tris)  // one addTriangle per triangle: FCL's primitive index = our id
         g->addTriangle(fcl::Vector3d(t.p[0][0], t.p[0][1], t.p[0][2]), fcl::Vector3d(t.p[1][0], t.p[1][1], t.p[1][2]),
                        fcl::Vector3d(t.p[2][0], t.p[2][1], t.p[2][2]));
     g->endModel();

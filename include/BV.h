@@ -113,6 +113,20 @@ inline void narrow_bv(BV *out, const pqp_bv *b)
     out->first_child = b->first_child;
 }
 
+/* The arguments of BV_Overlap and BV_Distance widened for the C interface. */
+struct bv_pair
+{
+    double R[9], T[3];
+    pqp_bv b1, b2;
+    bv_pair(PQP_REAL r[3][3], PQP_REAL t[3], const BV *v1, const BV *v2)
+    {
+        widen33(R, r);
+        widen3(T, t);
+        widen_bv(&b1, v1);
+        widen_bv(&b2, v2);
+    }
+};
+
 inline bool all_given(PQP_REAL R[3][3], PQP_REAL T[3], const BV *b1, const BV *b2)
 {
     return R != NULL && T != NULL && b1 != NULL && b2 != NULL;
@@ -146,14 +160,9 @@ inline void BV::FitToTris(PQP_REAL O[3][3], Tri *tris, int num_tris)
 inline int BV_Overlap(PQP_REAL R[3][3], PQP_REAL T[3], BV *b1, BV *b2)
 {
     if (!pqp_detail::all_given(R, T, b1, b2)) return 1;
-    double r[9], t[3];
-    pqp_detail::widen33(r, R);
-    pqp_detail::widen3(t, T);
-    pqp_bv w1, w2;
-    pqp_detail::widen_bv(&w1, b1);
-    pqp_detail::widen_bv(&w2, b2);
+    pqp_detail::bv_pair w(R, T, b1, b2);
     int overlap = 1;
-    if (pqp_bv_overlap(&overlap, r, t, &w1, &w2) != PQP_OK) return 1;
+    if (pqp_bv_overlap(&overlap, w.R, w.T, &w.b1, &w.b2) != PQP_OK) return 1;
     return overlap;
 }
 
@@ -164,15 +173,11 @@ inline int BV_Overlap(PQP_REAL R[3][3], PQP_REAL T[3], BV *b1, BV *b2)
  * NaN when an argument is NULL or not finite. */
 inline PQP_REAL BV_Distance(PQP_REAL R[3][3], PQP_REAL T[3], BV *b1, BV *b2)
 {
-    if (!pqp_detail::all_given(R, T, b1, b2)) return std::numeric_limits<PQP_REAL>::quiet_NaN();
-    double r[9], t[3];
-    pqp_detail::widen33(r, R);
-    pqp_detail::widen3(t, T);
-    pqp_bv w1, w2;
-    pqp_detail::widen_bv(&w1, b1);
-    pqp_detail::widen_bv(&w2, b2);
+    const PQP_REAL nan = std::numeric_limits<PQP_REAL>::quiet_NaN();
+    if (!pqp_detail::all_given(R, T, b1, b2)) return nan;
+    pqp_detail::bv_pair w(R, T, b1, b2);
     double d = 0.0;
-    if (pqp_bv_distance(&d, r, t, &w1, &w2) != PQP_OK) return std::numeric_limits<PQP_REAL>::quiet_NaN();
+    if (pqp_bv_distance(&d, w.R, w.T, &w.b1, &w.b2) != PQP_OK) return nan;
     return (PQP_REAL)d;
 }
 

@@ -39,6 +39,39 @@ class PQP_Model;
 
 namespace pqp_detail {
 
+/* A C handle owned by a C++ object: made by Create (again on demand, if allocation failed or the
+ * object was moved from) and freed by Destroy. A copy of the owner starts with a handle of its own
+ * (handles keep only what speeds up the next query: the answer lives in the owner's members);
+ * from C++11 a move takes the handle along. */
+template <typename H, H *(*Create)(), void (*Destroy)(H *)> class owned_handle
+{
+public:
+    owned_handle() : h_(Create()) {}
+    owned_handle(const owned_handle &) : h_(Create()) {}
+    owned_handle &operator=(const owned_handle &) { return *this; }
+#if __cplusplus >= 201103L
+    owned_handle(owned_handle &&other) noexcept : h_(other.h_) { other.h_ = NULL; }
+    owned_handle &operator=(owned_handle &&other) noexcept
+    {
+        std::swap(h_, other.h_);
+        return *this;
+    }
+#endif
+    ~owned_handle() { Destroy(h_); }
+
+    /* The handle, made now if there is none; NULL only if it cannot be allocated. */
+    H *get()
+    {
+        if (h_ == NULL) h_ = Create();
+        return h_;
+    }
+    /* The handle as it is (NULL if there is none). */
+    const H *peek() const { return h_; }
+
+private:
+    H *h_;
+};
+
 /* A 64-bit counter as PQP's int (saturating). */
 inline int clamp_to_int(int64_t v)
 {
@@ -388,14 +421,15 @@ struct PQP_CollideResult
 
     PQP_CollideResult()
         : num_bv_tests(0), num_tri_tests(0), query_time_secs(0.0), num_pairs_alloced(0),
-          num_pairs(0), pairs(NULL), pqp_handle_(pqp_collide_result_create())
+          num_pairs(0), pairs(NULL)
     {
         pqp_detail::identity(R, T);
     }
 
+    /* Copies have pair arrays of their own (PQP 1.3's shared one and freed it twice). */
     PQP_CollideResult(const PQP_CollideResult &other)
         : num_bv_tests(0), num_tri_tests(0), query_time_secs(0.0), num_pairs_alloced(0),
-          num_pairs(0), pairs(NULL), pqp_handle_(pqp_collide_result_create())
+          num_pairs(0), pairs(NULL)
     {
         copy_from(other);
     }
@@ -409,7 +443,7 @@ struct PQP_CollideResult
 #if __cplusplus >= 201103L
     PQP_CollideResult(PQP_CollideResult &&other) noexcept
         : num_bv_tests(0), num_tri_tests(0), query_time_secs(0.0), num_pairs_alloced(0),
-          num_pairs(0), pairs(NULL), pqp_handle_(NULL)
+          num_pairs(0), pairs(NULL)
     {
         swap(other);
     }
@@ -420,11 +454,7 @@ struct PQP_CollideResult
     }
 #endif
 
-    ~PQP_CollideResult()
-    {
-        delete[] pairs;
-        pqp_collide_result_destroy(pqp_handle_);
-    }
+    ~PQP_CollideResult() { delete[] pairs; }
 
     /* Resizes the pair array to n entries (n >= num_pairs; a smaller n is ignored, as PQP 1.3 did
      * after printing an error). Keeps the array as it was if memory runs out. */
@@ -459,7 +489,7 @@ struct PQP_CollideResult
         delete[] pairs;
         pairs = NULL;
         num_pairs = num_pairs_alloced = 0;
-        pqp_collide_result_free_pairs(pqp_handle_);
+        pqp_collide_result_free_pairs(handle_.get());
     }
 
     /* 1 if the last query found a colliding triangle pair, else 0. */
@@ -472,20 +502,16 @@ struct PQP_CollideResult
 
     /* pqp-rs extension: the C handle (for the C functions PQP 1.3 did not have). After a copy it
      * holds no answer: copies carry the members above. */
-    pqp_collide_result *pqp_handle()
-    {
-        if (pqp_handle_ == NULL) pqp_handle_ = pqp_collide_result_create();
-        return pqp_handle_;
-    }
-    const pqp_collide_result *pqp_handle() const { return pqp_handle_; }
+    pqp_collide_result *pqp_handle() { return handle_.get(); }
+    const pqp_collide_result *pqp_handle() const { return handle_.peek(); }
 
     /* Copies the last query's answer from the C result into the members; PQP_ERR_OUT_OF_MEMORY
      * (members unchanged) if the pair array cannot grow. */
     int pqp_take_answer(const double R1[9], const double T1[3], const double R2[9],
                         const double T2[3])
     {
-        int n = pqp_collide_result_num_pairs(pqp_handle_);
-        const pqp_contact_pair *found = pqp_collide_result_pairs(pqp_handle_);
+        int n = pqp_collide_result_num_pairs(handle_.peek());
+        const pqp_contact_pair *found = pqp_collide_result_pairs(handle_.peek());
         if (n > num_pairs_alloced) {
             int saved = num_pairs;
             num_pairs = 0;
@@ -498,9 +524,9 @@ struct PQP_CollideResult
             pairs[k].id2 = found[k].id2;
         }
         num_pairs = n;
-        num_bv_tests = pqp_detail::clamp_to_int(pqp_collide_result_num_bv_tests(pqp_handle_));
-        num_tri_tests = pqp_detail::clamp_to_int(pqp_collide_result_num_tri_tests(pqp_handle_));
-        query_time_secs = pqp_collide_result_query_time_secs(pqp_handle_);
+        num_bv_tests = pqp_detail::clamp_to_int(pqp_collide_result_num_bv_tests(handle_.peek()));
+        num_tri_tests = pqp_detail::clamp_to_int(pqp_collide_result_num_tri_tests(handle_.peek()));
+        query_time_secs = pqp_collide_result_query_time_secs(handle_.peek());
         pqp_detail::relative_pose(R, T, R1, T1, R2, T2);
         return PQP_OK;
     }
@@ -536,11 +562,13 @@ private:
         std::swap(num_pairs_alloced, other.num_pairs_alloced);
         std::swap(num_pairs, other.num_pairs);
         std::swap(pairs, other.pairs);
-        std::swap(pqp_handle_, other.pqp_handle_);
+        std::swap(handle_, other.handle_);
     }
 #endif
 
-    pqp_collide_result *pqp_handle_;
+    pqp_detail::owned_handle<pqp_collide_result, &pqp_collide_result_create,
+                             &pqp_collide_result_destroy>
+        handle_;
 };
 
 #if PQP_BV_TYPE & RSS_TYPE
@@ -568,35 +596,9 @@ struct PQP_DistanceResult
     /* The queue size the last query was given. */
     int qsize;
 
-    PQP_DistanceResult() : pqp_handle_(pqp_distance_result_create()) { clear(); }
-    PQP_DistanceResult(const PQP_DistanceResult &other)
-        : pqp_handle_(pqp_distance_result_create())
-    {
-        copy_members(other);
-    }
-    PQP_DistanceResult &operator=(const PQP_DistanceResult &other)
-    {
-        if (this != &other) copy_members(other);
-        return *this;
-    }
-#if __cplusplus >= 201103L
-    PQP_DistanceResult(PQP_DistanceResult &&other) noexcept : pqp_handle_(other.pqp_handle_)
-    {
-        other.pqp_handle_ = NULL;
-        copy_members(other);
-    }
-    PQP_DistanceResult &operator=(PQP_DistanceResult &&other) noexcept
-    {
-        if (this != &other) {
-            pqp_distance_result *h = pqp_handle_;
-            pqp_handle_ = other.pqp_handle_;
-            other.pqp_handle_ = h;
-            copy_members(other);
-        }
-        return *this;
-    }
-#endif
-    ~PQP_DistanceResult() { pqp_distance_result_destroy(pqp_handle_); }
+    /* Copies carry the members (and start with a triangle cache of their own); from C++11 on,
+     * results also move. */
+    PQP_DistanceResult() { clear(); }
 
     int NumBVTests() const { return num_bv_tests; }
     int NumTriTests() const { return num_tri_tests; }
@@ -608,26 +610,22 @@ struct PQP_DistanceResult
 
     /* pqp-rs extension: the C handle, which also keeps the triangle cache and search front that
      * speed up the next query on the same models. A copy starts with a fresh one. */
-    pqp_distance_result *pqp_handle()
-    {
-        if (pqp_handle_ == NULL) pqp_handle_ = pqp_distance_result_create();
-        return pqp_handle_;
-    }
-    const pqp_distance_result *pqp_handle() const { return pqp_handle_; }
+    pqp_distance_result *pqp_handle() { return handle_.get(); }
+    const pqp_distance_result *pqp_handle() const { return handle_.peek(); }
 
     /* Copies the last query's answer from the C result into the members. */
     void pqp_take_answer(const double R1[9], const double T1[3], const double R2[9],
                          const double T2[3], PQP_REAL rel, PQP_REAL abs, int queue)
     {
-        num_bv_tests = pqp_detail::clamp_to_int(pqp_distance_result_num_bv_tests(pqp_handle_));
-        num_tri_tests = pqp_detail::clamp_to_int(pqp_distance_result_num_tri_tests(pqp_handle_));
-        query_time_secs = pqp_distance_result_query_time_secs(pqp_handle_);
+        num_bv_tests = pqp_detail::clamp_to_int(pqp_distance_result_num_bv_tests(handle_.peek()));
+        num_tri_tests = pqp_detail::clamp_to_int(pqp_distance_result_num_tri_tests(handle_.peek()));
+        query_time_secs = pqp_distance_result_query_time_secs(handle_.peek());
         pqp_detail::relative_pose(R, T, R1, T1, R2, T2);
         rel_err = rel;
         abs_err = abs;
-        distance = (PQP_REAL)pqp_distance_result_distance(pqp_handle_);
-        pqp_detail::narrow3(p1, pqp_distance_result_p1(pqp_handle_));
-        pqp_detail::narrow3(p2, pqp_distance_result_p2(pqp_handle_));
+        distance = (PQP_REAL)pqp_distance_result_distance(handle_.peek());
+        pqp_detail::narrow3(p1, pqp_distance_result_p1(handle_.peek()));
+        pqp_detail::narrow3(p2, pqp_distance_result_p2(handle_.peek()));
         qsize = queue;
     }
 
@@ -640,21 +638,9 @@ private:
         rel_err = abs_err = distance = 0;
         for (int i = 0; i < 3; i++) p1[i] = p2[i] = 0;
     }
-    void copy_members(const PQP_DistanceResult &o)
-    {
-        num_bv_tests = o.num_bv_tests;
-        num_tri_tests = o.num_tri_tests;
-        query_time_secs = o.query_time_secs;
-        pqp_detail::copy_pose(R, T, o.R, o.T);
-        rel_err = o.rel_err;
-        abs_err = o.abs_err;
-        distance = o.distance;
-        pqp_detail::copy3(p1, o.p1);
-        pqp_detail::copy3(p2, o.p2);
-        qsize = o.qsize;
-    }
-
-    pqp_distance_result *pqp_handle_;
+    pqp_detail::owned_handle<pqp_distance_result, &pqp_distance_result_create,
+                             &pqp_distance_result_destroy>
+        handle_;
 };
 
 /* The answer of PQP_Tolerance. */
@@ -682,35 +668,8 @@ struct PQP_ToleranceResult
     /* The queue size the last query was given. */
     int qsize;
 
-    PQP_ToleranceResult() : pqp_handle_(pqp_tolerance_result_create()) { clear(); }
-    PQP_ToleranceResult(const PQP_ToleranceResult &other)
-        : pqp_handle_(pqp_tolerance_result_create())
-    {
-        copy_members(other);
-    }
-    PQP_ToleranceResult &operator=(const PQP_ToleranceResult &other)
-    {
-        if (this != &other) copy_members(other);
-        return *this;
-    }
-#if __cplusplus >= 201103L
-    PQP_ToleranceResult(PQP_ToleranceResult &&other) noexcept : pqp_handle_(other.pqp_handle_)
-    {
-        other.pqp_handle_ = NULL;
-        copy_members(other);
-    }
-    PQP_ToleranceResult &operator=(PQP_ToleranceResult &&other) noexcept
-    {
-        if (this != &other) {
-            pqp_tolerance_result *h = pqp_handle_;
-            pqp_handle_ = other.pqp_handle_;
-            other.pqp_handle_ = h;
-            copy_members(other);
-        }
-        return *this;
-    }
-#endif
-    ~PQP_ToleranceResult() { pqp_tolerance_result_destroy(pqp_handle_); }
+    /* Copies carry the members; from C++11 on, results also move. */
+    PQP_ToleranceResult() { clear(); }
 
     int NumBVTests() const { return num_bv_tests; }
     int NumTriTests() const { return num_tri_tests; }
@@ -722,27 +681,23 @@ struct PQP_ToleranceResult
     const PQP_REAL *P2() const { return p2; }
 
     /* pqp-rs extension: the C handle. A copy starts with a fresh one. */
-    pqp_tolerance_result *pqp_handle()
-    {
-        if (pqp_handle_ == NULL) pqp_handle_ = pqp_tolerance_result_create();
-        return pqp_handle_;
-    }
-    const pqp_tolerance_result *pqp_handle() const { return pqp_handle_; }
+    pqp_tolerance_result *pqp_handle() { return handle_.get(); }
+    const pqp_tolerance_result *pqp_handle() const { return handle_.peek(); }
 
     /* Copies the last query's answer from the C result into the members. */
     void pqp_take_answer(const double R1[9], const double T1[3], const double R2[9],
                          const double T2[3], PQP_REAL tol, int queue)
     {
-        num_bv_tests = pqp_detail::clamp_to_int(pqp_tolerance_result_num_bv_tests(pqp_handle_));
+        num_bv_tests = pqp_detail::clamp_to_int(pqp_tolerance_result_num_bv_tests(handle_.peek()));
         num_tri_tests =
-            pqp_detail::clamp_to_int(pqp_tolerance_result_num_tri_tests(pqp_handle_));
-        query_time_secs = pqp_tolerance_result_query_time_secs(pqp_handle_);
+            pqp_detail::clamp_to_int(pqp_tolerance_result_num_tri_tests(handle_.peek()));
+        query_time_secs = pqp_tolerance_result_query_time_secs(handle_.peek());
         pqp_detail::relative_pose(R, T, R1, T1, R2, T2);
-        closer_than_tolerance = pqp_tolerance_result_closer_than_tolerance(pqp_handle_);
+        closer_than_tolerance = pqp_tolerance_result_closer_than_tolerance(handle_.peek());
         tolerance = tol;
-        distance = (PQP_REAL)pqp_tolerance_result_distance(pqp_handle_);
-        pqp_detail::narrow3(p1, pqp_tolerance_result_p1(pqp_handle_));
-        pqp_detail::narrow3(p2, pqp_tolerance_result_p2(pqp_handle_));
+        distance = (PQP_REAL)pqp_tolerance_result_distance(handle_.peek());
+        pqp_detail::narrow3(p1, pqp_tolerance_result_p1(handle_.peek()));
+        pqp_detail::narrow3(p2, pqp_tolerance_result_p2(handle_.peek()));
         qsize = queue;
     }
 
@@ -755,21 +710,9 @@ private:
         tolerance = distance = 0;
         for (int i = 0; i < 3; i++) p1[i] = p2[i] = 0;
     }
-    void copy_members(const PQP_ToleranceResult &o)
-    {
-        num_bv_tests = o.num_bv_tests;
-        num_tri_tests = o.num_tri_tests;
-        query_time_secs = o.query_time_secs;
-        pqp_detail::copy_pose(R, T, o.R, o.T);
-        closer_than_tolerance = o.closer_than_tolerance;
-        tolerance = o.tolerance;
-        distance = o.distance;
-        pqp_detail::copy3(p1, o.p1);
-        pqp_detail::copy3(p2, o.p2);
-        qsize = o.qsize;
-    }
-
-    pqp_tolerance_result *pqp_handle_;
+    pqp_detail::owned_handle<pqp_tolerance_result, &pqp_tolerance_result_create,
+                             &pqp_tolerance_result_destroy>
+        handle_;
 };
 
 #endif /* PQP_BV_TYPE & RSS_TYPE */
