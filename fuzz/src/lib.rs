@@ -978,7 +978,7 @@ unsafe fn check_convex_model(m: *const pqp_convex_model) {
 }
 
 /// Whether a point set's non-zero coordinates span more than 100 orders of magnitude: where
-/// `pqp_convex_model_from_points` is known to fail with `PQP_ERR_INTERNAL` (a library bug, kept by
+/// `pqp_convex_model_from_points` (and `_from_triangles`) is known to fail with `PQP_ERR_INTERNAL` (a library bug, kept by
 /// an ignored test in tests/fuzz_regressions.rs; drop this exception once it is fixed).
 pub fn known_bug_extreme_spread(coords: &[f64]) -> bool {
     let nz = coords.iter().filter(|x| **x != 0.0).map(|x| x.abs());
@@ -1083,7 +1083,13 @@ pub fn convex(data: &[u8]) {
                     idx.as_ptr(),
                     (idx.len() / 3) as c_int,
                 );
-                assert_code("from_triangles", rc, expect);
+                // The known bug of known_bug_extreme_spread also hits meshes (regression
+                // from-triangles-internal: a hull vertex moved to 1e100 beside 1e-140s).
+                let mut allowed = expect.to_vec();
+                if known_bug_extreme_spread(&xyz) {
+                    allowed.push(PQP_ERR_INTERNAL);
+                }
+                assert_code("from_triangles", rc, &allowed);
             }
             if !out.is_null() {
                 check_convex_model(out);
