@@ -29,6 +29,8 @@ typedef float PQP_REAL;
 #include <stdio.h>
 #include <string.h>
 
+#include "check.h"
+
 #ifdef PQP_TEST_FLOAT
 static const char *const NAME = "matvec_tridist_float";
 // Distances are computed in double and rounded to float, and so are the closest points.
@@ -84,10 +86,7 @@ static uint64_t rng_state = U64(0x2545F491, 0x4F6CDD1D);
 
 static uint64_t next_u64()
 {
-    uint64_t z = (rng_state += U64(0x9E3779B9, 0x7F4A7C15));
-    z = (z ^ (z >> 30)) * U64(0xBF58476D, 0x1CE4E5B9);
-    z = (z ^ (z >> 27)) * U64(0x94D049BB, 0x133111EB);
-    return z ^ (z >> 31);
+    return check_splitmix64(&rng_state);
 }
 
 // Uniform in [lo, hi).

@@ -110,7 +110,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
 mod tests {
     use super::*;
     use crate::query::{distance, distance_into, DistanceOptions, DistanceResult, Search};
-    use crate::test_rng::Lcg;
+    use crate::test_rng::{Lcg, Random};
 
     /// A closed-ish bumpy blob: a UV sphere with a random radius per vertex ring.
     fn blob(rng: &mut Lcg, nlat: usize, nlon: usize) -> Model {
@@ -137,33 +137,6 @@ mod tests {
         Model::from_triangles(tris).unwrap()
     }
 
-    fn rotation(rng: &mut Lcg) -> [[f64; 3]; 3] {
-        let (u1, u2, u3) = (rng.unit(), rng.unit(), rng.unit());
-        let (s1, s2) = ((1.0 - u1).sqrt(), u1.sqrt());
-        let (a, b) = (
-            2.0 * std::f64::consts::PI * u2,
-            2.0 * std::f64::consts::PI * u3,
-        );
-        let (w, x, y, z) = (s2 * b.cos(), s1 * a.sin(), s1 * a.cos(), s2 * b.sin());
-        [
-            [
-                1.0 - 2.0 * (y * y + z * z),
-                2.0 * (x * y - w * z),
-                2.0 * (x * z + w * y),
-            ],
-            [
-                2.0 * (x * y + w * z),
-                1.0 - 2.0 * (x * x + z * z),
-                2.0 * (y * z - w * x),
-            ],
-            [
-                2.0 * (x * z - w * y),
-                2.0 * (y * z + w * x),
-                1.0 - 2.0 * (x * x + y * y),
-            ],
-        ]
-    }
-
     /// Separated poses: centres 2.5 to 4 apart (the blobs have radius at most 1.2).
     fn poses(rng: &mut Lcg, n: usize) -> Vec<(Pose, Pose)> {
         (0..n)
@@ -173,8 +146,8 @@ mod tests {
                 let c = 2.5 + 1.5 * rng.unit();
                 let t = [dir[0] / len * c, dir[1] / len * c, dir[2] / len * c];
                 (
-                    Pose::new(rotation(rng), [0.0; 3]),
-                    Pose::new(rotation(rng), t),
+                    Pose::new(rng.rotation(), [0.0; 3]),
+                    Pose::new(rng.rotation(), t),
                 )
             })
             .collect()

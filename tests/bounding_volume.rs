@@ -6,65 +6,25 @@ use nalgebra::{Quaternion, Rotation3, SymmetricEigen, UnitQuaternion};
 use pqp::bounding_volume::{BoundingVolume, DistanceVolume, Obb, OverlapVolume, Ssv, SsvKind};
 use pqp::math::{Mat3, RelPose, Vec3};
 
-/// splitmix64: small, seeded, good enough for test inputs.
-struct Rng(u64);
+mod common;
+use common::{Random, RandomPqp, Rng};
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    fn f(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.range(lo.ln(), hi.ln()).exp()
-    }
-    fn cube(&mut self, s: f64) -> Vec3 {
-        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
-    }
-    fn unit(&mut self) -> Vec3 {
-        loop {
-            let v = self.cube(1.0);
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-    fn rotation(&mut self) -> Mat3 {
-        loop {
-            let q = Quaternion::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = q.norm();
-            if n > 0.1 && n <= 1.0 {
-                return UnitQuaternion::from_quaternion(q)
-                    .to_rotation_matrix()
-                    .into_inner();
-            }
-        }
-    }
-    /// A point uniformly in the ball of radius `r`.
-    fn in_ball(&mut self, r: f64) -> Vec3 {
-        loop {
-            let v = self.cube(1.0);
-            if v.norm_squared() <= 1.0 {
-                return v * r;
-            }
+/// A random rotation from a quaternion drawn in the unit ball (rejecting short ones), the stream
+/// these tests' cases were chosen on: with the kit's `rotation3` instead, two of them fail (see
+/// the house-checks report), which needs looking into in src/bounding_volume before switching.
+fn ball_rotation(rng: &mut Rng) -> Mat3 {
+    loop {
+        let q = Quaternion::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        let n = q.norm();
+        if n > 0.1 && n <= 1.0 {
+            return UnitQuaternion::from_quaternion(q)
+                .to_rotation_matrix()
+                .into_inner();
         }
     }
 }
@@ -100,31 +60,33 @@ fn principal_axes(points: &[Vec3]) -> Mat3 {
 
 /// A random point set of one of several shapes, with its scale (largest coordinate magnitude).
 fn point_set(rng: &mut Rng, scale: f64, offset: f64) -> Vec<Vec3> {
-    let frame = rng.rotation();
-    let off = rng.cube(offset);
+    let frame = ball_rotation(rng);
+    let off = rng.vec3(offset);
     let n = 1 + rng.below(30);
     let kind = rng.below(8);
     let e = match kind {
-        0 | 6 => Vec3::new(scale, scale * rng.f(), scale * rng.f()),
-        1 => Vec3::new(scale, scale * rng.f(), 0.0),
+        0 | 6 => Vec3::new(scale, scale * rng.unit(), scale * rng.unit()),
+        1 => Vec3::new(scale, scale * rng.unit(), 0.0),
         2 => Vec3::new(scale, 0.0, 0.0),
         3 => Vec3::zeros(),
         _ => Vec3::new(scale, scale, scale),
     };
     let mut pts: Vec<Vec3> = match kind {
         // On a sphere: rounded caps and edges are what hold these.
-        6 | 7 => (0..n.max(4)).map(|_| off + rng.unit() * scale).collect(),
+        6 | 7 => (0..n.max(4))
+            .map(|_| off + rng.direction3() * scale)
+            .collect(),
         // A few distinct points, repeated.
         4 => {
             let distinct: Vec<Vec3> = (0..1 + rng.below(3))
-                .map(|_| off + rng.cube(scale))
+                .map(|_| off + rng.vec3(scale))
                 .collect();
             (0..n).map(|i| distinct[i % distinct.len()]).collect()
         }
         // A triangle, as at the leaves.
-        5 => (0..3).map(|_| off + frame * rng.cube(scale)).collect(),
+        5 => (0..3).map(|_| off + frame * rng.vec3(scale)).collect(),
         _ => (0..n)
-            .map(|_| off + frame * rng.cube(1.0).component_mul(&e))
+            .map(|_| off + frame * rng.vec3(1.0).component_mul(&e))
             .collect(),
     };
     if rng.below(4) == 0 {
@@ -136,7 +98,7 @@ fn point_set(rng: &mut Rng, scale: f64, offset: f64) -> Vec<Vec3> {
 
 fn axes_for(rng: &mut Rng, pts: &[Vec3]) -> Mat3 {
     match rng.below(3) {
-        0 => rng.rotation(),
+        0 => ball_rotation(rng),
         _ => principal_axes(pts),
     }
 }
@@ -262,9 +224,9 @@ fn rss_keeps_corner_points_inside_a_small_rectangle() {
     // and every point is held by the rounded part.
     let mut rng = Rng(3);
     for _ in 0..200 {
-        let c = rng.cube(10.0);
-        let pts: Vec<Vec3> = (0..50).map(|_| c + rng.unit() * 2.0).collect();
-        let axes = rng.rotation();
+        let c = rng.vec3(10.0);
+        let pts: Vec<Vec3> = (0..50).map(|_| c + rng.direction3() * 2.0).collect();
+        let axes = ball_rotation(&mut rng);
         let rss = Ssv::fit(SsvKind::Rect, &axes, &pts);
         for p in &pts {
             assert!(rss.contains(p, 0.0));
@@ -425,8 +387,8 @@ fn random_ssv(rng: &mut Rng, kind: SsvKind, size: f64, offset: f64) -> (Ssv, Vec
             _ => rng.log_uniform(1e-3, 1.0) * size,
         };
         let ssv = Ssv {
-            axes: rng.rotation(),
-            origin: rng.cube(offset),
+            axes: ball_rotation(rng),
+            origin: rng.vec3(offset),
             lengths,
             radius,
         };
@@ -443,10 +405,10 @@ fn special_rotation(rng: &mut Rng) -> Mat3 {
         2 => *Rotation3::from_axis_angle(&Vec3::x_axis(), quarter * rng.below(4) as f64).matrix(),
         3 => *Rotation3::from_axis_angle(&Vec3::y_axis(), quarter * rng.below(4) as f64).matrix(),
         4 => {
-            let axis = nalgebra::Unit::new_normalize(rng.unit());
+            let axis = nalgebra::Unit::new_normalize(rng.direction3());
             *Rotation3::from_axis_angle(&axis, rng.log_uniform(1e-12, 1e-3)).matrix()
         }
-        _ => rng.rotation(),
+        _ => ball_rotation(rng),
     }
 }
 
@@ -495,8 +457,8 @@ fn random_ssv_pair(
         1 => {
             let mid = Vec3::new(0.5 * a.lengths[0], 0.5 * a.lengths[1], 0.0);
             let at = Vec3::new(
-                rng.f() * b.lengths[0],
-                rng.f() * b.lengths[1],
+                rng.unit() * b.lengths[0],
+                rng.unit() * b.lengths[1],
                 rng.range(-0.1, 0.1) * a.size(),
             );
             p = mid - q * at;
@@ -557,13 +519,13 @@ fn ssv_distance_never_exceeds_the_distance_of_contained_points_for_every_pair_of
             let mut out: Vec<Vec3> = pts.to_vec();
             for _ in 0..40 {
                 let base = v.origin
-                    + v.axes.column(0) * (v.lengths[0] * rng.f())
-                    + v.axes.column(1) * (v.lengths[1] * rng.f());
+                    + v.axes.column(0) * (v.lengths[0] * rng.unit())
+                    + v.axes.column(1) * (v.lengths[1] * rng.unit());
                 // Half on the surface, where the nearest points are.
                 let off = if rng.below(2) == 0 {
-                    rng.unit() * v.radius
+                    rng.direction3() * v.radius
                 } else {
-                    rng.in_ball(v.radius)
+                    rng.in_ball3(v.radius)
                 };
                 out.push(base + off);
             }
@@ -751,8 +713,8 @@ fn random_box(rng: &mut Rng, size: f64, offset: f64, flat: bool) -> Obb {
         half[rng.below(3)] = 0.0;
     }
     Obb {
-        axes: rng.rotation(),
-        center: rng.cube(offset),
+        axes: ball_rotation(rng),
+        center: rng.vec3(offset),
         half,
     }
 }
@@ -921,8 +883,8 @@ fn volumes_at_huge_coordinates_stay_finite_and_conservative() {
         let pb = point_set(&mut rng, scale, 3e149);
         let (axa, axb) = (axes_for(&mut rng, &pa), axes_for(&mut rng, &pb));
         let rel = RelPose {
-            rot: rng.rotation(),
-            trans: rng.cube(1e150),
+            rot: ball_rotation(&mut rng),
+            trans: rng.vec3(1e150),
         };
         let (ka, kb) = (KINDS[rng.below(3)], KINDS[rng.below(3)]);
         let (ra, rb) = (Ssv::fit(ka, &axa, &pa), Ssv::fit(kb, &axb, &pb));
@@ -951,11 +913,11 @@ fn volumes_at_huge_coordinates_stay_finite_and_conservative() {
 fn triangle_rectangle_is_orthonormal_and_contains_slivers() {
     let mut rng = Rng(5);
     for k in 0..2000 {
-        let p = Vec3::new(rng.f(), rng.f(), rng.f()) * 10.0;
-        let d = Vec3::new(rng.f(), rng.f(), rng.f());
+        let p = Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 10.0;
+        let d = Vec3::new(rng.unit(), rng.unit(), rng.unit());
         // The third vertex near the edge (or on it, or at an end): slivers of every thinness.
         let thin = [0.0, 1e-15, 1e-12, 1e-8, 1e-3, 1.0][k % 6];
-        let r = p + d * rng.f().abs() + Vec3::new(rng.f(), rng.f(), rng.f()) * thin;
+        let r = p + d * rng.unit().abs() + Vec3::new(rng.unit(), rng.unit(), rng.unit()) * thin;
         let t = [p, p + d, if k % 50 == 0 { p } else { r }];
         let v = Ssv::triangle(&t);
         let a = v.axes;
@@ -1023,7 +985,7 @@ fn obb_triangle_overlap_agrees_with_brute_force() {
             rng.range(-1.5, 1.5),
         );
         let c = b.center + b.axes * at.component_mul(&b.half.add_scalar(size));
-        let t = [c + rng.cube(size), c + rng.cube(size), c + rng.cube(size)];
+        let t = [c + rng.vec3(size), c + rng.vec3(size), c + rng.vec3(size)];
         let got = Obb::overlap_triangle(&b, &t).expect("boxes have a direct test");
         let margin = 1e-9 * (1.0 + b.center.abs().max());
         if brute_box_meets_triangle(&b, &t, -margin) {
@@ -1050,11 +1012,11 @@ fn segment_crossing_a_rectangle_at_a_grazing_angle() {
         trans: Vec3::zeros(),
     };
     for k in 0..20000 {
-        let axes = rng.rotation();
+        let axes = ball_rotation(&mut rng);
         let (u, v, n) = (axes.column(0), axes.column(1), axes.column(2));
         let rect = Ssv {
             axes,
-            origin: rng.cube(1.0),
+            origin: rng.vec3(1.0),
             lengths: [rng.range(0.1, 1.0), rng.range(0.05, 1.0)],
             radius: 0.0,
         };

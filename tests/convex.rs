@@ -9,56 +9,25 @@ use pqp::convex::{
 };
 use pqp::{Error, Pose, Vec3};
 
-/// SplitMix64, seeded.
-struct Rng(u64);
+mod common;
+use common::{Random, RandomPqp, Rng};
 
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-    fn point(&mut self, half: f64) -> [f64; 3] {
-        [
-            self.range(-half, half),
-            self.range(-half, half),
-            self.range(-half, half),
-        ]
-    }
-    fn unit_vector(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-    /// A rotation about a random axis by a random angle (Rodrigues), row-major.
-    fn rotation(&mut self) -> [[f64; 3]; 3] {
-        let axis = self.unit_vector();
+/// Poses these tests' cases and thresholds were chosen on: a rotation about a random axis by an
+/// angle uniform in [-pi, pi] (not uniform over rotations, unlike the kit's `rotation`).
+trait AxisAngle: Random + RandomPqp {
+    /// The rotation, row-major.
+    fn axis_angle_rotation(&mut self) -> [[f64; 3]; 3] {
+        let axis = self.direction3();
         let angle = self.range(-std::f64::consts::PI, std::f64::consts::PI);
         rotation_about(&axis, angle)
     }
-    fn pose(&mut self, half: f64) -> Pose {
-        Pose::new(self.rotation(), self.point(half))
+    /// That rotation and a translation in the cube of side `2 * half`.
+    fn axis_angle_pose(&mut self, half: f64) -> Pose {
+        Pose::new(self.axis_angle_rotation(), self.point(half))
     }
 }
+
+impl AxisAngle for Rng {}
 
 fn rotation_about(axis: &Vec3, angle: f64) -> [[f64; 3]; 3] {
     let (s, c) = angle.sin_cos();
@@ -703,7 +672,7 @@ fn hull_of_nearly_coplanar_sets() {
         // Points on a sphere of radius 1 with a tiny noise (nearly cospherical too).
         let sphere: Vec<[f64; 3]> = (0..300)
             .map(|_| {
-                let u = rng.unit_vector() * (1.0 + rng.range(-eps, eps));
+                let u = rng.direction3() * (1.0 + rng.range(-eps, eps));
                 [u.x, u.y, u.z]
             })
             .collect();
@@ -985,8 +954,8 @@ fn vclip_matches_brute_force_on_random_pairs() {
     for round in 0..rounds(1500) {
         let (a, _) = random_hull(&mut rng, 4, 16);
         let (b, _) = random_hull(&mut rng, 4, 16);
-        let pa = rng.pose(0.5);
-        let pb = rng.pose(1.5);
+        let pa = rng.axis_angle_pose(0.5);
+        let pb = rng.axis_angle_pose(1.5);
         check_pair(&a, &pa, &b, &pb, &mut tally, &format!("pair {round}"));
     }
     assert!(
@@ -1010,8 +979,8 @@ fn vclip_matches_brute_force_when_touching() {
     while done < rounds(500) {
         let (a, _) = random_hull(&mut rng, 4, 12);
         let (b, _) = random_hull(&mut rng, 4, 12);
-        let pa = rng.pose(0.5);
-        let mut pb = rng.pose(4.0);
+        let pa = rng.axis_angle_pose(0.5);
+        let mut pb = rng.axis_angle_pose(4.0);
         let (wa, wb) = (posed(&a, &pa), posed(&b, &pb));
         if brute_depth(&wa, &wb).0 > -1e-6 {
             continue;
@@ -1098,7 +1067,7 @@ fn vclip_on_large_hulls() {
     for round in 0..rounds(40) {
         let a = &models[round % 3];
         let b = &models[(round / 3) % 3];
-        let (pa, pb) = (rng.pose(1.0), rng.pose(3.0));
+        let (pa, pb) = (rng.axis_angle_pose(1.0), rng.axis_angle_pose(3.0));
         check_pair(a, &pa, b, &pb, &mut tally, &format!("large {round}"));
     }
 }
@@ -1124,7 +1093,7 @@ fn vclip_on_sliver_hulls() {
         models.push(ConvexModel::from_points(&grid).unwrap());
         let sphere: Vec<[f64; 3]> = (0..40)
             .map(|_| {
-                let u = rng.unit_vector() * (1.0 + rng.range(-eps, eps));
+                let u = rng.direction3() * (1.0 + rng.range(-eps, eps));
                 [u.x, u.y, u.z]
             })
             .collect();
@@ -1135,7 +1104,7 @@ fn vclip_on_sliver_hulls() {
     for round in 0..rounds(300) {
         let a = &models[rng.below(models.len())];
         let b = &models[rng.below(models.len())];
-        let (pa, pb) = (rng.pose(0.5), rng.pose(2.0));
+        let (pa, pb) = (rng.axis_angle_pose(0.5), rng.axis_angle_pose(2.0));
         check_pair(a, &pa, b, &pb, &mut tally, &format!("sliver {round}"));
     }
     assert!(tally.apart > 50 && tally.overlapping > 50);
@@ -1147,10 +1116,10 @@ fn warm_starts_agree_with_cold_starts() {
     for round in 0..rounds(30) {
         let (a, _) = random_hull(&mut rng, 6, 40);
         let (b, _) = random_hull(&mut rng, 6, 40);
-        let pa = rng.pose(0.5);
-        let mut pb = rng.pose(3.0);
-        let axis = rng.unit_vector();
-        let drift = rng.unit_vector() * -0.02;
+        let pa = rng.axis_angle_pose(0.5);
+        let mut pb = rng.axis_angle_pose(3.0);
+        let axis = rng.direction3();
+        let drift = rng.direction3() * -0.02;
         let mut cache = ConvexPairCache::new();
         let (mut warm_iters, mut cold_iters) = (0u64, 0u64);
         for frame in 0..150 {
@@ -1203,7 +1172,7 @@ fn long_coherent_sequence_terminates() {
     let pa = Pose::identity();
     let mut cache = ConvexPairCache::new();
     let (mut total, mut worst) = (0u64, 0u32);
-    let axis = rng.unit_vector();
+    let axis = rng.direction3();
     let frames = rounds(20_000);
     for frame in 0..frames {
         let t = frame as f64 * 0.002;
@@ -1306,7 +1275,7 @@ fn penetration_depth_matches_brute_force() {
     for round in 0..rounds(600) {
         let (a, _) = random_hull(&mut rng, 4, 12);
         let (b, _) = random_hull(&mut rng, 4, 12);
-        let (pa, pb) = (rng.pose(0.5), rng.pose(1.5));
+        let (pa, pb) = (rng.axis_angle_pose(0.5), rng.axis_angle_pose(1.5));
         checked +=
             check_penetration(&a, &pa, &b, &pb, true, &format!("penetration {round}")) as usize;
     }
@@ -1324,7 +1293,7 @@ fn penetration_depth_on_larger_and_degenerate_hulls() {
     let sphere = |rng: &mut Rng, n: usize| {
         let p: Vec<[f64; 3]> = (0..n)
             .map(|_| {
-                let u = rng.unit_vector();
+                let u = rng.direction3();
                 [u.x, u.y, u.z]
             })
             .collect();
@@ -1348,7 +1317,7 @@ fn penetration_depth_on_larger_and_degenerate_hulls() {
         let (i, j) = (rng.below(models.len()), rng.below(models.len()));
         // Axis-aligned poses half of the time: parallel faces and edges, ties between candidates.
         let (pa, pb) = if round % 2 == 0 {
-            (rng.pose(0.5), rng.pose(1.5))
+            (rng.axis_angle_pose(0.5), rng.axis_angle_pose(1.5))
         } else {
             let t = [rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), 0.0];
             (Pose::identity(), Pose::from_translation(t))

@@ -11,45 +11,8 @@ use pqp::geometry::{
 };
 use pqp::Vec3;
 
-/// SplitMix64.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next() % ((hi - lo + 1) as u64)) as i64
-    }
-    fn vec(&mut self, r: f64) -> Vec3 {
-        Vec3::new(self.range(-r, r), self.range(-r, r), self.range(-r, r))
-    }
-    /// A uniformly random unit vector.
-    fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec(1.0);
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-    /// `10^u` for `u` uniform in `[lo, hi]`.
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        10f64.powf(self.range(lo, hi))
-    }
-}
+mod common;
+use common::{Random, RandomPqp, Rng};
 
 // ---------------------------------------------------------------------------------------------
 // References
@@ -245,9 +208,9 @@ fn check_distance(a: &Tri, b: &Tri, what: &str) -> f64 {
 
 fn random_tri(rng: &mut Rng, center: Vec3, size: f64) -> Tri {
     [
-        center + rng.vec(size),
-        center + rng.vec(size),
-        center + rng.vec(size),
+        center + rng.vec3(size),
+        center + rng.vec3(size),
+        center + rng.vec3(size),
     ]
 }
 
@@ -256,7 +219,7 @@ fn random_offset(rng: &mut Rng) -> Vec3 {
     if rng.unit() < 0.3 {
         Vec3::zeros()
     } else {
-        rng.dir() * rng.log_uniform(0.0, 6.0)
+        rng.direction3() * rng.log10_uniform(0.0, 6.0)
     }
 }
 
@@ -274,7 +237,7 @@ fn point_in(rng: &mut Rng, t: &Tri) -> Vec3 {
 /// normal to `dir`.
 fn tri_beyond(rng: &mut Rng, v: Vec3, dir: &Vec3, size: f64) -> Tri {
     let mut w = || loop {
-        let u = rng.vec(size);
+        let u = rng.vec3(size);
         let along = u.dot(dir);
         if along > 0.05 * size {
             return v + u;
@@ -320,7 +283,7 @@ fn near_pair(rng: &mut Rng, kind: u32, offset: Vec3, size: f64, g: f64) -> (Tri,
                 return (a, tri_beyond(rng, y, &dir, size));
             }
             // An edge through y normal to dir, the third vertex beyond.
-            let f = dir.cross(&rng.dir()).normalize() * size;
+            let f = dir.cross(&rng.direction3()).normalize() * size;
             let (s0, s1) = (rng.range(0.1, 1.0), rng.range(0.1, 1.0));
             let third = tri_beyond(rng, y, &dir, size)[1];
             (a, [y - f * s0, y + f * s1, third])
@@ -328,7 +291,7 @@ fn near_pair(rng: &mut Rng, kind: u32, offset: Vec3, size: f64, g: f64) -> (Tri,
         _ => {
             // A copy moved off the plane by g and slid, spun in the plane.
             let c = (a[0] + a[1] + a[2]) / 3.0;
-            let slide = n.cross(&rng.dir()) * rng.range(0.0, size);
+            let slide = n.cross(&rng.direction3()) * rng.range(0.0, size);
             let ang = rng.range(0.0, 6.3);
             let (u, w) = (
                 (a[1] - a[0]).normalize(),
@@ -351,12 +314,12 @@ fn random_pairs_match_reference() {
     let mut hits = 0;
     for iter in 0..3000 {
         let off = random_offset(&mut rng);
-        let size = rng.log_uniform(-3.0, 3.0);
+        let size = rng.log10_uniform(-3.0, 3.0);
         let a = random_tri(&mut rng, off, size);
         // From far apart to overlapping.
         let sep = size * rng.range(0.0, 3.0);
-        let cb = off + rng.dir() * sep;
-        let sb = size * rng.log_uniform(-1.0, 1.0);
+        let cb = off + rng.direction3() * sep;
+        let sb = size * rng.log10_uniform(-1.0, 1.0);
         let b = random_tri(&mut rng, cb, sb);
         let d = check_distance(&a, &b, &format!("random #{iter}"));
         hits += (d < 1e-12 * size) as u32;
@@ -378,13 +341,13 @@ fn nearly_touching_pairs_at_known_gaps() {
     let mut rng = Rng(42);
     for iter in 0..3000 {
         let kind = (iter % 4) as u32;
-        let size = rng.log_uniform(-2.0, 3.0);
+        let size = rng.log10_uniform(-2.0, 3.0);
         let off = if iter % 3 == 0 {
             Vec3::zeros()
         } else {
-            rng.vec(1.0) * rng.log_uniform(0.0, 4.0)
+            rng.vec3(1.0) * rng.log10_uniform(0.0, 4.0)
         };
-        let g = size * rng.log_uniform(-12.0, 0.0);
+        let g = size * rng.log10_uniform(-12.0, 0.0);
         let (a, b) = near_pair(&mut rng, kind, off, size, g);
         let want = check_distance(&a, &b, &format!("near kind {kind} #{iter}"));
         let pts = all6(&a, &b);
@@ -419,7 +382,7 @@ fn vertex_near_edge_with_large_coordinates() {
     // any double computation are good to a few 1e-13 only; the point is not answering hundreds.
     for iter in 0..3000 {
         let size = rng.range(500.0, 3000.0);
-        let off = rng.vec(3000.0);
+        let off = rng.vec3(3000.0);
         let g = 1.8e-12 * rng.range(0.5, 2.0);
         let (a, b) = near_pair(&mut rng, 2, off, size, g);
         let ulp = f64::EPSILON * max_coord(&all6(&a, &b));
@@ -854,24 +817,26 @@ fn degenerate_triangles() {
 fn random_degenerate_and_sliver_triangles() {
     let mut rng = Rng(2024);
     for iter in 0..2000 {
-        let size = rng.log_uniform(-1.0, 1.0);
+        let size = rng.log10_uniform(-1.0, 1.0);
         let a = random_tri(&mut rng, Vec3::zeros(), size);
-        let p = rng.vec(size);
-        let q = rng.vec(size);
+        let p = rng.vec3(size);
+        let q = rng.vec3(size);
         let b: Tri = match iter % 4 {
             0 => [p, p, p],
             1 => [p, q, q],
             2 => [p, q, p + (q - p) * 0.5],
             // A sliver: the third vertex off the segment by a tiny amount.
             _ => {
-                let w = (q - p).cross(&rng.dir()).normalize() * size * rng.log_uniform(-14.0, -6.0);
+                let w = (q - p).cross(&rng.direction3()).normalize()
+                    * size
+                    * rng.log10_uniform(-14.0, -6.0);
                 [p, q, p + (q - p) * rng.unit() + w]
             }
         };
         check_distance(&a, &b, &format!("degenerate #{iter}"));
         check_distance(
             &b,
-            &b.map(|x| x + rng.vec(size)),
+            &b.map(|x| x + rng.vec3(size)),
             &format!("degenerate pair #{iter}"),
         );
     }
@@ -885,17 +850,17 @@ fn random_degenerate_and_sliver_triangles() {
 fn vertex_over_a_sliver_face() {
     let mut rng = Rng(31);
     for iter in 0..2000 {
-        let size = rng.log_uniform(-1.0, 2.0);
-        let p = rng.vec(size);
-        let q = p + rng.dir() * size;
+        let size = rng.log10_uniform(-1.0, 2.0);
+        let p = rng.vec3(size);
+        let q = p + rng.direction3() * size;
         let along = (q - p).normalize();
-        let m = along.cross(&rng.dir()).normalize();
-        let width = size * rng.log_uniform(-12.0, -4.0);
+        let m = along.cross(&rng.direction3()).normalize();
+        let width = size * rng.log10_uniform(-12.0, -4.0);
         let a: Tri = [p, q, p + (q - p) * rng.range(0.2, 0.8) + m * width];
         // The exact normal direction of this sliver: along x m, to the rounding of the inputs.
         let n = along.cross(&m);
         let x = (a[0] + a[1] + a[2]) / 3.0;
-        let h = size * rng.log_uniform(-9.0, -1.0);
+        let h = size * rng.log10_uniform(-9.0, -1.0);
         let top = x + n * h;
         let b = tri_beyond(&mut rng, top, &n, size);
         let got = tri_distance(&a, &b).distance;
@@ -921,11 +886,11 @@ fn shared_features_and_identity() {
     for iter in 0..500 {
         let off = random_offset(&mut rng);
         let a = random_tri(&mut rng, off, 1.0);
-        let c = rng.vec(2.0) + a[0];
+        let c = rng.vec3(2.0) + a[0];
         for (name, b) in [
             ("identical", a),
             ("shared edge", [a[1], a[0], c]),
-            ("shared vertex", [a[2], c, c + rng.vec(1.0)]),
+            ("shared vertex", [a[2], c, c + rng.vec3(1.0)]),
             ("reversed", [a[2], a[1], a[0]]),
         ] {
             let r = tri_distance(&a, &b);
@@ -940,7 +905,7 @@ fn shared_features_and_identity() {
 fn extreme_scales_are_exact_rescalings() {
     let mut rng = Rng(77);
     for iter in 0..300 {
-        let g = rng.log_uniform(-6.0, 0.0);
+        let g = rng.log10_uniform(-6.0, 0.0);
         let (a, b) = near_pair(&mut rng, (iter % 4) as u32, Vec3::zeros(), 1.0, g);
         let base = tri_distance(&a, &b);
         for k in [-500, -200, -100, 100, 200, 300, 480] {
@@ -1000,12 +965,12 @@ fn check_segments(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3, what: &str) {
 fn segments_match_reference() {
     let mut rng = Rng(3);
     for iter in 0..2000 {
-        let size = rng.log_uniform(-3.0, 3.0);
+        let size = rng.log10_uniform(-3.0, 3.0);
         let off = random_offset(&mut rng);
-        let p0 = off + rng.vec(size);
-        let mut p1 = off + rng.vec(size);
-        let mut q0 = off + rng.vec(size);
-        let mut q1 = off + rng.vec(size);
+        let p0 = off + rng.vec3(size);
+        let mut p1 = off + rng.vec3(size);
+        let mut q0 = off + rng.vec3(size);
+        let mut q1 = off + rng.vec3(size);
         match iter % 6 {
             // Parallel (to rounding), collinear, zero length, nearly parallel.
             0 => {
@@ -1026,7 +991,8 @@ fn segments_match_reference() {
             }
             4 => {
                 let d = p1 - p0;
-                q1 = q0 + (d + rng.vec(size) * rng.log_uniform(-12.0, -3.0)) * rng.range(-2.0, 2.0);
+                q1 = q0
+                    + (d + rng.vec3(size) * rng.log10_uniform(-12.0, -3.0)) * rng.range(-2.0, 2.0);
             }
             _ => {}
         }
@@ -1040,10 +1006,10 @@ fn nearly_parallel_crossing_segments_are_accurate() {
     // rounding level, not grow as rounding / angle.
     let mut rng = Rng(8);
     for iter in 0..2000 {
-        let c = rng.vec(10.0);
-        let u = rng.dir();
-        let w = u.cross(&rng.dir()).normalize();
-        let ang = rng.log_uniform(-12.0, -1.0);
+        let c = rng.vec3(10.0);
+        let u = rng.direction3();
+        let w = u.cross(&rng.direction3()).normalize();
+        let ang = rng.log10_uniform(-12.0, -1.0);
         let v = u * ang.cos() + w * ang.sin();
         let (s0, s1, t0, t1) = (
             rng.range(0.1, 5.0),
@@ -1061,7 +1027,7 @@ fn nearly_parallel_crossing_segments_are_accurate() {
 fn point_triangle_matches_reference() {
     let mut rng = Rng(13);
     for iter in 0..3000 {
-        let size = rng.log_uniform(-3.0, 3.0);
+        let size = rng.log10_uniform(-3.0, 3.0);
         let off = random_offset(&mut rng);
         let mut t = random_tri(&mut rng, off, size);
         match iter % 5 {
@@ -1073,7 +1039,7 @@ fn point_triangle_matches_reference() {
         let p = if iter % 7 == 0 {
             point_in(&mut rng, &t)
         } else {
-            off + rng.vec(2.0 * size)
+            off + rng.vec3(2.0 * size)
         };
         let r = point_triangle(&p, &t);
         let want = ref_point_tri(&p, &t);
@@ -1121,7 +1087,7 @@ fn throughput() {
         let pairs: Vec<(Tri, Tri)> = (0..4096)
             .map(|_| {
                 let a = random_tri(&mut rng, Vec3::zeros(), 1.0);
-                let c = rng.dir() * rng.range(lo, hi);
+                let c = rng.direction3() * rng.range(lo, hi);
                 (a, random_tri(&mut rng, c, 1.0))
             })
             .collect();
@@ -1214,7 +1180,7 @@ fn disjoint_triangles_are_never_at_distance_zero() {
     let mut rng = Rng(61);
     let (mut apart, mut touching) = (0, 0);
     for k in 0..20000 {
-        let a: Tri = [rng.vec(1.0), rng.vec(1.0), rng.vec(1.0)];
+        let a: Tri = [rng.vec3(1.0), rng.vec3(1.0), rng.vec3(1.0)];
         // A point on an edge or inside the face of a, nudged by a few ulps.
         let (s, t) = (rng.unit(), rng.unit());
         let on = if k % 2 == 0 {
@@ -1222,9 +1188,9 @@ fn disjoint_triangles_are_never_at_distance_zero() {
         } else {
             a[0] + (a[1] - a[0]) * (s * 0.5) + (a[2] - a[0]) * (t * 0.5)
         };
-        let tip = on + rng.dir() * (f64::EPSILON * rng.range(0.0, 4.0));
-        let away = rng.dir();
-        let b: Tri = [tip, tip + away, tip + rng.vec(1.0).cross(&away)];
+        let tip = on + rng.direction3() * (f64::EPSILON * rng.range(0.0, 4.0));
+        let away = rng.direction3();
+        let b: Tri = [tip, tip + away, tip + rng.vec3(1.0).cross(&away)];
         let d = tri_distance(&a, &b).distance;
         if tri_overlap(&a, &b) {
             touching += 1;

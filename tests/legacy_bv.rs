@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{add, cross, dot, norm, scale, sub, tri_tri, Rng, T, V};
+use common::{add, cross, dot, norm, scale, sub, tri_tri, Random, Rng, T, V};
 use pqp::capi::*;
 use std::ptr;
 

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{Mesh, Rng};
+use common::{Mesh, Random, RandomPqp, Rng};
 use pqp::capi::*;
 use std::ptr;
 

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{apply, brute, norm, point_tri, sub, Mesh, Rng};
+use common::{apply, brute, norm, point_tri, sub, Mesh, Random, RandomPqp, Rng};
 use pqp::{
     collide, distance, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult,
     Model, Pose, Search, Strategy,

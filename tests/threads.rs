@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{Mesh, Rng};
+use common::{Mesh, RandomPqp, Rng};
 use pqp::{
     collide, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult, Pose, Search,
 };

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{brute, Mesh, Rng};
+use common::{brute, Mesh, Random, RandomPqp, Rng};
 use pqp::capi::*;
 use pqp::{
     collide, distance, tolerance, CollisionVolume, ContactMode, DistanceOptions, Error, Model,

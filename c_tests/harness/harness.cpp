@@ -1,5 +1,8 @@
 #include "harness.hpp"
 
+// The seeding generator, shared with every C and C++ test.
+#include "../../c_api_tests/check.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,15 +16,9 @@
 namespace ht {
 
 // ---------------------------------------------------------------------------------------------------
-static uint64_t splitmix64(uint64_t *x) {
-    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 Rng::Rng(uint64_t seed) {
-    for (auto &s : s_) s = splitmix64(&seed);
+    for (auto &s : s_) s = check_splitmix64(&seed);
 }
 
 static inline uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }

@@ -348,40 +348,29 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::{Random, Rng};
     use nalgebra::{Rotation3, Unit};
-
-    /// SplitMix64, as a source of uniform doubles in [-1, 1).
-    struct Rng(u64);
-    impl Rng {
-        fn f(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-    }
 
     /// Case `k` of a random pair of rectangles (B's axes and corner in A's frame, the sides), at
     /// one of three spreads, some of them segments.
     fn random_pair(rng: &mut Rng, k: usize) -> (Mat3, Vec3, [f64; 2], [f64; 2]) {
-        let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
-        let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
-        let t = Vec3::new(rng.f(), rng.f(), rng.f()) * [0.1, 1.0, 3.0][k % 3];
+        let axis = Unit::new_normalize(Vec3::new(rng.signed(), rng.signed(), rng.signed() + 1e-3));
+        let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.signed()).into_inner();
+        let t = Vec3::new(rng.signed(), rng.signed(), rng.signed()) * [0.1, 1.0, 3.0][k % 3];
         let la = [
-            rng.f().abs(),
+            rng.signed().abs(),
             if k.is_multiple_of(5) {
                 0.0
             } else {
-                rng.f().abs()
+                rng.signed().abs()
             },
         ];
         let lb = [
-            rng.f().abs(),
+            rng.signed().abs(),
             if k.is_multiple_of(7) {
                 0.0
             } else {
-                rng.f().abs()
+                rng.signed().abs()
             },
         ];
         (r, t, la, lb)
@@ -394,16 +383,17 @@ mod tests {
         let mut rng = Rng(17);
         let (mut below, mut above) = (0, 0);
         for k in 0..20000 {
-            let axis = Unit::new_normalize(Vec3::new(rng.f(), rng.f(), rng.f() + 1e-3));
-            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.f()).into_inner();
+            let axis =
+                Unit::new_normalize(Vec3::new(rng.signed(), rng.signed(), rng.signed() + 1e-3));
+            let r: Mat3 = Rotation3::from_axis_angle(&axis, 4.0 * rng.signed()).into_inner();
             let spread = [0.1, 1.0, 3.0][k % 3];
-            let t = Vec3::new(rng.f(), rng.f(), rng.f()) * spread;
+            let t = Vec3::new(rng.signed(), rng.signed(), rng.signed()) * spread;
             // Some sides zero: segments and points are rectangles too.
-            let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.f().abs() };
+            let side = |rng: &mut Rng, zero: bool| if zero { 0.0 } else { rng.signed().abs() };
             let la = [side(&mut rng, k % 7 == 0), side(&mut rng, k % 5 == 0)];
             let lb = [side(&mut rng, k % 11 == 0), side(&mut rng, k % 4 == 0)];
             let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
-            let cutoff = exact * (0.5 + rng.f().abs());
+            let cutoff = exact * (0.5 + rng.signed().abs());
             let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
             if exact < cutoff {
                 below += 1;
@@ -428,7 +418,7 @@ mod tests {
         for k in 0..20000 {
             let (r, t, la, lb) = random_pair(&mut rng, k);
             let (exact, _) = rect_distance(&r, &t, la, lb, 0.0, f64::INFINITY, true);
-            let cutoff = exact * (0.5 + rng.f().abs());
+            let cutoff = exact * (0.5 + rng.signed().abs());
             let (strict, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, true);
             let (got, _) = rect_distance(&r, &t, la, lb, 0.0, cutoff, false);
             if exact < cutoff {

@@ -450,21 +450,7 @@ fn orient2d_integers(a: P2, b: P2, c: P2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// SplitMix64: a tiny seeded generator for reproducible tests.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-        fn int(&mut self, lo: i64, hi: i64) -> i64 {
-            lo + (self.next() % ((hi - lo + 1) as u64)) as i64
-        }
-    }
+    use crate::test_rng::{Random, Rng};
 
     fn det_i128(p: [[i64; 3]; 4]) -> i128 {
         let d = |i: usize, k: usize| (p[i][k] - p[0][k]) as i128;

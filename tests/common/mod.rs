@@ -4,67 +4,40 @@
 
 use pqp::{Model, Pose};
 
-/// SplitMix64: small, seeded, good enough for test inputs.
-pub struct Rng(u64);
+/// The test kit's generator, shared with the crate's unit tests (src/test_rng.rs).
+#[path = "../../src/test_rng.rs"]
+mod test_rng;
+pub use test_rng::{Random, Rng};
 
-impl Rng {
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed)
-    }
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    pub fn point(&mut self, half: f64) -> [f64; 3] {
-        [
-            self.range(-half, half),
-            self.range(-half, half),
-            self.range(-half, half),
-        ]
-    }
-    /// A uniformly random rotation (from a random unit quaternion), row-major.
-    pub fn rotation(&mut self) -> [[f64; 3]; 3] {
-        let (u1, u2, u3) = (self.unit(), self.unit(), self.unit());
-        let tau = std::f64::consts::TAU;
-        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-        let (w, x, y, z) = (
-            a * (tau * u2).sin(),
-            a * (tau * u2).cos(),
-            b * (tau * u3).sin(),
-            b * (tau * u3).cos(),
-        );
-        [
-            [
-                1.0 - 2.0 * (y * y + z * z),
-                2.0 * (x * y - z * w),
-                2.0 * (x * z + y * w),
-            ],
-            [
-                2.0 * (x * y + z * w),
-                1.0 - 2.0 * (x * x + z * z),
-                2.0 * (y * z - x * w),
-            ],
-            [
-                2.0 * (x * z - y * w),
-                2.0 * (y * z + x * w),
-                1.0 - 2.0 * (x * x + y * y),
-            ],
-        ]
-    }
-    pub fn pose(&mut self, half: f64) -> Pose {
+/// The library's types from the kit's arrays.
+pub trait RandomPqp: Random {
+    /// A random pose: a uniformly random rotation and a translation in the cube of side
+    /// `2 * half`.
+    fn pose(&mut self, half: f64) -> Pose {
         Pose::new(self.rotation(), self.point(half))
     }
+    /// [`Random::point`] as a `Vec3`.
+    fn vec3(&mut self, half: f64) -> pqp::Vec3 {
+        pqp::Vec3::from(self.point(half))
+    }
+    /// [`Random::direction`] as a `Vec3`.
+    fn direction3(&mut self) -> pqp::Vec3 {
+        pqp::Vec3::from(self.direction())
+    }
+    /// [`Random::in_ball`] as a `Vec3`.
+    fn in_ball3(&mut self, r: f64) -> pqp::Vec3 {
+        pqp::Vec3::from(self.in_ball(r))
+    }
+    /// [`Random::rotation`] as a matrix.
+    fn rotation3(&mut self) -> pqp::math::Mat3 {
+        let r = self.rotation();
+        pqp::math::Mat3::new(
+            r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+        )
+    }
 }
+
+impl<R: Random> RandomPqp for R {}
 
 pub type V = [f64; 3];
 pub type T = [V; 3];
