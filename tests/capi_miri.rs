@@ -16,22 +16,25 @@ fn tri(z: f64) -> [[f64; 3]; 3] {
     [[0.0, 0.0, z], [1.0, 0.0, z], [0.0, 1.0, z]]
 }
 
-/// A built model of the given triangles, ids 10, 11, ...
-unsafe fn model(tris: &[[[f64; 3]; 3]]) -> *mut pqp_model {
+/// A built model of the given triangles, ids 10, 11, ... (free it with pqp_model_destroy).
+fn model(tris: &[[[f64; 3]; 3]]) -> *mut pqp_model {
     let m = pqp_model_create();
     assert!(!m.is_null());
-    assert_eq!(pqp_model_begin(m, tris.len() as c_int), PQP_OK);
-    for (i, t) in tris.iter().enumerate() {
-        let rc = pqp_model_add_tri(
-            m,
-            t[0].as_ptr(),
-            t[1].as_ptr(),
-            t[2].as_ptr(),
-            10 + i as c_int,
-        );
-        assert_eq!(rc, PQP_OK);
+    // SAFETY: m is a live handle just created; every vertex pointer points to 3 doubles.
+    unsafe {
+        assert_eq!(pqp_model_begin(m, tris.len() as c_int), PQP_OK);
+        for (i, t) in tris.iter().enumerate() {
+            let rc = pqp_model_add_tri(
+                m,
+                t[0].as_ptr(),
+                t[1].as_ptr(),
+                t[2].as_ptr(),
+                10 + i as c_int,
+            );
+            assert_eq!(rc, PQP_OK);
+        }
+        assert_eq!(pqp_model_end(m), PQP_OK);
     }
-    assert_eq!(pqp_model_end(m), PQP_OK);
     m
 }
 

@@ -3,8 +3,9 @@
 //! input of `fuzz/regressions/TARGET/` (each crash a fuzzer found, kept once fixed). A crash
 //! that is a library bug not yet fixed has its own `#[ignore]`d test below instead.
 
+// The fuzz crate is edition 2021, where an unsafe fn's body is an unsafe block.
 #[path = "../fuzz/src/lib.rs"]
-#[allow(dead_code)]
+#[allow(dead_code, unsafe_op_in_unsafe_fn)]
 mod fuzz_checks;
 
 use std::path::Path;
