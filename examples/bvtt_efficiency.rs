@@ -17,7 +17,7 @@
 mod workloads;
 
 use pqp::diagnostics::minimal_bvtt;
-use pqp::{distance_into, DistanceOptions, DistanceResult, Model, Search};
+use pqp::{DistanceOptions, DistanceResult, Model, Search, distance_into};
 use workloads::{median, read_path, read_tris, spheres_poses, uv_sphere};
 
 fn main() {

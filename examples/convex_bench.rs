@@ -2,8 +2,8 @@
 //!
 //! `cargo run --release --example convex_bench`
 
-use pqp::convex::{convex_distance, convex_penetration, ConvexModel, ConvexPairCache};
 use pqp::Pose;
+use pqp::convex::{ConvexModel, ConvexPairCache, convex_distance, convex_penetration};
 use std::time::Instant;
 
 /// SplitMix64.

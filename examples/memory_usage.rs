@@ -7,11 +7,11 @@
 
 mod workloads;
 
-use pqp::capi::*;
 use pqp::Model;
+use pqp::capi::*;
 use std::path::Path;
 use std::ptr;
-use workloads::{read_tris, uv_sphere, Tri};
+use workloads::{Tri, read_tris, uv_sphere};
 
 /// Bytes per triangle of a C model of `tris`: bare, with the double view, with the float view.
 fn with_views(tris: &[Tri]) -> [f64; 3] {

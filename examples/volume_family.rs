@@ -22,13 +22,13 @@
 mod workloads;
 
 use pqp::{
-    collide_into, distance_into, tolerance_into, CollideResult, CollisionVolume, ContactMode,
-    DistanceOptions, DistanceResult, Model, Pose, Search, ToleranceResult, VolumeKind,
+    CollideResult, CollisionVolume, ContactMode, DistanceOptions, DistanceResult, Model, Pose,
+    Search, ToleranceResult, VolumeKind, collide_into, distance_into, tolerance_into,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use workloads::{
-    median, random_rotation, read_path, read_tris, spheres_poses, uv_sphere, Rng, Tri,
+    Rng, Tri, median, random_rotation, read_path, read_tris, spheres_poses, uv_sphere,
 };
 
 /// Work and time of one workload: BV tests, triangle tests and median seconds per query.

@@ -13,7 +13,7 @@ use crate::bvh::Bvh;
 use crate::error::Error;
 use crate::math::{Pose, RelPose};
 use crate::model::Model;
-use crate::query::search::{expand, root_pair, LeafVolumes};
+use crate::query::search::{LeafVolumes, expand, root_pair};
 
 /// Sizes of the minimal BVTT of a distance query (see the module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -109,7 +109,7 @@ fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::query::{distance, distance_into, DistanceOptions, DistanceResult, Search};
+    use crate::query::{DistanceOptions, DistanceResult, Search, distance, distance_into};
     use crate::test_rng::{Lcg, Random};
 
     /// A closed-ish bumpy blob: a UV sphere with a random radius per vertex ring.

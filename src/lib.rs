@@ -58,7 +58,7 @@ pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
 pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
-    collide, collide_into, distance, distance_into, tolerance, tolerance_into, CollideResult,
-    ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats, Strategy,
-    ToleranceResult,
+    CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats,
+    Strategy, ToleranceResult, collide, collide_into, distance, distance_into, tolerance,
+    tolerance_into,
 };

@@ -2,7 +2,7 @@
 
 pub use crate::bvh::{CollisionVolume, VolumeKind};
 
-use crate::bvh::{try_copy, Bvh};
+use crate::bvh::{Bvh, try_copy};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
 use crate::math::Vec3;

@@ -5,7 +5,7 @@
 //! reads and writes, use after free, leaks, invalid references).
 
 use pqp::capi::*;
-use std::ffi::{c_int, CStr};
+use std::ffi::{CStr, c_int};
 use std::ptr::{null, null_mut};
 
 const I: [f64; 9] = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];

@@ -4,8 +4,8 @@
 //! vertices and faces (point-polygon and segment-segment distances, separating-axis overlaps).
 
 use pqp::convex::{
-    convex_distance, convex_intersect, convex_penetration, ConvexModel, ConvexPairCache, Feature,
-    FeatureKind,
+    ConvexModel, ConvexPairCache, Feature, FeatureKind, convex_distance, convex_intersect,
+    convex_penetration,
 };
 use pqp::{Error, Pose, Vec3};
 

@@ -6,10 +6,10 @@
 //! interiors hold a closest pair is the distance. It shares no code or formulation with the
 //! library (which clamps parameters and decides contact by orientation signs).
 
-use pqp::geometry::{
-    point_triangle, segment_segment, tri_distance, tri_overlap, ClosestPoints, Tri,
-};
 use pqp::Vec3;
+use pqp::geometry::{
+    ClosestPoints, Tri, point_triangle, segment_segment, tri_distance, tri_overlap,
+};
 
 mod common;
 use common::{Random, RandomPqp, Rng};

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{add, cross, dot, norm, scale, sub, tri_tri, Random, Rng, T, V};
+use common::{Random, Rng, T, V, add, cross, dot, norm, scale, sub, tri_tri};
 use pqp::capi::*;
 use std::ptr;
 

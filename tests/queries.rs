@@ -3,10 +3,10 @@
 
 mod common;
 
-use common::{apply, brute, norm, point_tri, sub, Mesh, Random, RandomPqp, Rng};
+use common::{Mesh, Random, RandomPqp, Rng, apply, brute, norm, point_tri, sub};
 use pqp::{
-    collide, distance, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult,
-    Model, Pose, Search, Strategy,
+    ContactMode, DistanceOptions, DistanceResult, Model, Pose, Search, Strategy, collide, distance,
+    distance_into, tolerance,
 };
 
 fn close(a: f64, b: f64) -> bool {
@@ -425,9 +425,11 @@ fn large_offsets_and_tiny_gaps() {
     // The exact answer of the stored doubles.
     let gap = (off + 1e-6) - off;
     assert!((r.distance - gap).abs() < 1e-12, "{}", r.distance);
-    assert!(!collide(&a, &here, &b, &here, ContactMode::All)
-        .unwrap()
-        .colliding());
+    assert!(
+        !collide(&a, &here, &b, &here, ContactMode::All)
+            .unwrap()
+            .colliding()
+    );
 }
 
 #[test]

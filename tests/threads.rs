@@ -4,7 +4,7 @@ mod common;
 
 use common::{Mesh, RandomPqp, Rng};
 use pqp::{
-    collide, distance_into, tolerance, ContactMode, DistanceOptions, DistanceResult, Pose, Search,
+    ContactMode, DistanceOptions, DistanceResult, Pose, Search, collide, distance_into, tolerance,
 };
 use std::sync::Arc;
 

@@ -7,11 +7,11 @@
 
 mod common;
 
-use common::{brute, Mesh, Random, RandomPqp, Rng};
+use common::{Mesh, Random, RandomPqp, Rng, brute};
 use pqp::capi::*;
 use pqp::{
-    collide, distance, tolerance, CollisionVolume, ContactMode, DistanceOptions, Error, Model,
-    Pose, Search, VolumeKind,
+    CollisionVolume, ContactMode, DistanceOptions, Error, Model, Pose, Search, VolumeKind, collide,
+    distance, tolerance,
 };
 
 const VOLUMES: [VolumeKind; 4] = [

@@ -1,6 +1,6 @@
 use super::{BoundingVolume, OverlapVolume};
 use crate::geometry::Tri;
-use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3};
 
 /// Oriented bounding box.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -229,21 +229,13 @@ fn beyond(x: f64, y: f64) -> f64 {
 /// The smaller of two numbers (no NaN reaches here; cheaper than `f64::min`).
 #[inline(always)]
 fn least(a: f64, b: f64) -> f64 {
-    if a < b {
-        a
-    } else {
-        b
-    }
+    if a < b { a } else { b }
 }
 
 /// The larger of two numbers (no NaN reaches here; cheaper than `f64::max`).
 #[inline(always)]
 fn most(a: f64, b: f64) -> f64 {
-    if a > b {
-        a
-    } else {
-        b
-    }
+    if a > b { a } else { b }
 }
 
 /// `p` minus its nearest point on the rectangle `[0, l[0]] x [0, l[1]] x {0}`.
@@ -268,11 +260,7 @@ fn nearest(o: &[Vec3; 4]) -> (usize, f64) {
     ];
     let (i01, n01) = if n[1] < n[0] { (1, n[1]) } else { (0, n[0]) };
     let (i23, n23) = if n[3] < n[2] { (3, n[3]) } else { (2, n[2]) };
-    if n23 < n01 {
-        (i23, n23)
-    } else {
-        (i01, n01)
-    }
+    if n23 < n01 { (i23, n23) } else { (i01, n01) }
 }
 
 /// Whether both edges of a rectangle leaving its corner `i` (of `c`, `c + u`, `c + v`, `c + u + v`)
@@ -301,11 +289,7 @@ fn edge_min(p: &Vec3, d: &Vec3, o0: &Vec3, o1: &Vec3, l: [f64; 2], best: f64) ->
     // drops below the smaller end's: a lower bound for the whole edge.
     let gap = |a: f64, b: f64| {
         let m = least(a.abs(), b.abs());
-        if a * b > 0.0 {
-            m
-        } else {
-            0.0
-        }
+        if a * b > 0.0 { m } else { 0.0 }
     };
     let (gx, gy, gz) = (gap(o0.x, o1.x), gap(o0.y, o1.y), gap(o0.z, o1.z));
     if gx * gx + gy * gy + gz * gz >= best {

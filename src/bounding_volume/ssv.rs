@@ -12,7 +12,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{frame_from, Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, frame_from};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -4,8 +4,8 @@
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
-use crate::geometry::{Tri, RESCALE_LO};
-use crate::math::{frame_from, Mat3, Vec3};
+use crate::geometry::{RESCALE_LO, Tri};
+use crate::math::{Mat3, Vec3, frame_from};
 use nalgebra::SymmetricEigen;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
@@ -396,11 +396,7 @@ fn outside(x: f64, len: f64) -> f64 {
     let below = -x;
     let above = x - len;
     let d = if below > above { below } else { above };
-    if d > 0.0 {
-        d
-    } else {
-        0.0
-    }
+    if d > 0.0 { d } else { 0.0 }
 }
 
 /// The smallest by volume of the three fits (covered; arguments as [`Ssv::fit_uncovered`] takes

@@ -23,9 +23,9 @@ pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
-use crate::geometry::Tri;
 use crate::geometry::RESCALE_HI;
-use crate::math::{frame_from, Mat3, RelPose, Vec3};
+use crate::geometry::Tri;
+use crate::math::{Mat3, RelPose, Vec3, frame_from};
 
 /// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
 /// hold in their stacks and queues; they ask the [`Bvh`] for its volumes, its children and its

@@ -10,7 +10,7 @@
 //! This hierarchy stores only inner nodes, in model coordinates, with leaves computed from their
 //! triangles; [`Bvh::pqp_view`] lays it out PQP's way. Nothing here is used by the queries.
 
-use super::{Bvh, NodeRef, MAX_DEPTH};
+use super::{Bvh, MAX_DEPTH, NodeRef};
 use crate::error::Error;
 use crate::math::{Mat3, Vec3};
 

@@ -5,11 +5,11 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, code, count, deref, deref_mut, destroy_handle, getter, new_handle, pqp_model,
-    read_pose, reset, PQP_ALL_CONTACTS, PQP_ERR_INTERNAL, PQP_FIRST_CONTACT,
+    PQP_ALL_CONTACTS, PQP_ERR_INTERNAL, PQP_FIRST_CONTACT, boundary, code, count, deref, deref_mut,
+    destroy_handle, getter, new_handle, pqp_model, read_pose, reset,
 };
 use crate::error::Error;
-use crate::query::{collide_into, CollideResult, ContactMode, ContactPair};
+use crate::query::{CollideResult, ContactMode, ContactPair, collide_into};
 use std::ffi::c_int;
 use std::mem::{align_of, offset_of, size_of};
 use std::ptr;

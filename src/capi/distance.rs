@@ -5,10 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    boundary, count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model,
-    pqp_search_options, status, write_pair, PosedModel, SearchArg, DEFAULT_SEARCH_OPTIONS,
+    DEFAULT_SEARCH_OPTIONS, PosedModel, SearchArg, boundary, count, deref, destroy_handle, getter,
+    new_handle, pair_query, pqp_model, pqp_search_options, status, write_pair,
 };
-use crate::query::{distance_into, DistanceOptions, DistanceResult};
+use crate::query::{DistanceOptions, DistanceResult, distance_into};
 use std::ffi::c_int;
 use std::ptr;
 

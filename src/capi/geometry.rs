@@ -3,7 +3,7 @@
 
 use super::{read_doubles, status};
 use crate::error::{Error, MAX_COORDINATE};
-use crate::geometry::{segment_segment_dir, tri_distance, ClosestPoints, Tri};
+use crate::geometry::{ClosestPoints, Tri, segment_segment_dir, tri_distance};
 use crate::math::Vec3;
 use std::ffi::c_int;
 
@@ -165,11 +165,7 @@ mod tests {
                 t.as_ptr(),
             )
         };
-        if rc == PQP_OK {
-            Ok((d, p, q))
-        } else {
-            Err(rc)
-        }
+        if rc == PQP_OK { Ok((d, p, q)) } else { Err(rc) }
     }
 
     /// pqp_segment_distance's answer, or its error code.
@@ -187,11 +183,7 @@ mod tests {
                 v[3].as_ptr(),
             )
         };
-        if rc == PQP_OK {
-            Ok((d, x, y))
-        } else {
-            Err(rc)
-        }
+        if rc == PQP_OK { Ok((d, x, y)) } else { Err(rc) }
     }
 
     #[test]

@@ -6,8 +6,8 @@
 
 #![allow(non_snake_case)] // R, Tr, To, l, r, d: PQP's names, which the header shows.
 
-use super::{boundary, code, deref, pqp_model, read_doubles, PQP_ERR_INTERNAL};
-use crate::bounding_volume::{rect_distance, Obb, OverlapVolume, Ssv, SsvKind};
+use super::{PQP_ERR_INTERNAL, boundary, code, deref, pqp_model, read_doubles};
+use crate::bounding_volume::{Obb, OverlapVolume, Ssv, SsvKind, rect_distance};
 use crate::bvh::PqpBv;
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;

@@ -2,8 +2,8 @@
 
 use super::legacy::LegacyView;
 use super::{
-    boundary, code, deref, deref_mut, destroy_handle, into_handle, read_doubles, status,
-    PQP_ERR_INTERNAL,
+    PQP_ERR_INTERNAL, boundary, code, deref, deref_mut, destroy_handle, into_handle, read_doubles,
+    status,
 };
 use crate::error::Error;
 use crate::model::{BuildState, CollisionVolume, Model, VolumeKind};

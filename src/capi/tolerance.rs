@@ -5,10 +5,10 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model, pqp_search_options,
-    status, write_pair, PosedModel, SearchArg,
+    PosedModel, SearchArg, count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model,
+    pqp_search_options, status, write_pair,
 };
-use crate::query::{tolerance_into, ToleranceResult};
+use crate::query::{ToleranceResult, tolerance_into};
 use std::ffi::c_int;
 use std::ptr;
 

@@ -8,7 +8,7 @@
 //! therefore leave coplanar triangles and sometimes non-extreme vertices (in a facet or on an edge);
 //! `model.rs` merges the former into polygons and removes the latter.
 
-use super::predicates::{collinear, orient3d, P3};
+use super::predicates::{P3, collinear, orient3d};
 use crate::error::Error;
 use std::collections::HashMap;
 

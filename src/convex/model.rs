@@ -1,8 +1,8 @@
 //! `ConvexModel`: a convex polyhedron with its features (vertices, edges, faces), their neighbours
 //! and their Voronoi planes, built from a point set (through our hull) or from a closed convex mesh.
 
-use super::hull::{hull, TriSurface};
-use super::predicates::{area_vector, orient2d, orient3d, P3};
+use super::hull::{TriSurface, hull};
+use super::predicates::{P3, area_vector, orient2d, orient3d};
 use super::{Feature, FeatureKind};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::math::Vec3;

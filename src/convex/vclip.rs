@@ -595,7 +595,7 @@ pub(crate) fn vclip(
                     distance,
                     points,
                     counters: ctr,
-                })
+                });
             }
             Outcome::Contact(points) => {
                 return Ok(VClipAnswer {
@@ -604,7 +604,7 @@ pub(crate) fn vclip(
                     distance: 0.0,
                     points,
                     counters: ctr,
-                })
+                });
             }
         }
         if state == checkpoint {
@@ -636,11 +636,7 @@ fn break_cycle(s: &[Side; 2], mut ctr: Counters) -> VClipAnswer {
 
 /// Orders a pair found with model `x` first back into (model 1, model 2).
 fn ordered<T>(x: usize, a: T, b: T) -> [T; 2] {
-    if x == 0 {
-        [a, b]
-    } else {
-        [b, a]
-    }
+    if x == 0 { [a, b] } else { [b, a] }
 }
 
 /// Exhaustive closest pair: contact if a vertex of one model is inside the other or an edge of

@@ -149,11 +149,7 @@ impl BigInt {
         } else {
             y
         };
-        if self.neg {
-            -y
-        } else {
-            y
-        }
+        if self.neg { -y } else { y }
     }
 }
 

@@ -577,7 +577,7 @@ mod tests {
         let v = Vec3::new(0.1, 0.7, f64::from_bits(0.3f64.to_bits() + 1));
         let n = cross_accurate(&u, &v);
         let dz = v.z - u.z; // exact
-                            // u x v = u x (u + dz e_z) = dz (u x e_z) = dz (u.y, -u.x, 0)
+        // u x v = u x (u + dz e_z) = dz (u x e_z) = dz (u.y, -u.x, 0)
         let want = Vec3::new(dz * u.y, -dz * u.x, 0.0);
         assert!((n - want).norm() <= 1e-15 * want.norm(), "{n:?} {want:?}");
     }

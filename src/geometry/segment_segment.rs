@@ -1,5 +1,5 @@
-use super::predicates::{cross_accurate, kernel_rescale, max_abs, pow2};
 use super::ClosestPoints;
+use super::predicates::{cross_accurate, kernel_rescale, max_abs, pow2};
 use crate::math::Vec3;
 
 /// Closest points between segments `[p0, p1]` and `[q0, q1]` (either may have zero length).
@@ -78,11 +78,7 @@ pub(crate) struct SegSeg {
 #[inline]
 fn clamp01(x: f64) -> f64 {
     let x = if x > 0.0 { x } else { 0.0 };
-    if x < 1.0 {
-        x
-    } else {
-        1.0
-    }
+    if x < 1.0 { x } else { 1.0 }
 }
 
 /// Closest points of `p0 + s d1` and `q0 + t d2`, `s, t` in `[0, 1]`, given `a = |d1|^2`,
@@ -147,11 +143,7 @@ pub(crate) fn seg_seg(
 /// `1 / x`, or 0 for `x == 0`.
 #[inline]
 pub(crate) fn recip(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0 / x
-    } else {
-        0.0
-    }
+    if x > 0.0 { 1.0 / x } else { 0.0 }
 }
 
 /// `|v|`, also where `|v|^2` would underflow (below about 1e-154): a separation that small is

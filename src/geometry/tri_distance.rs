@@ -1,7 +1,7 @@
-use super::point_triangle::{face_normal, FaceFrame};
-use super::predicates::{kernel_rescale, max_abs, pow2, PlaneFilter};
+use super::point_triangle::{FaceFrame, face_normal};
+use super::predicates::{PlaneFilter, kernel_rescale, max_abs, pow2};
 use super::segment_segment::{length, point_on, recip, seg_seg};
-use super::tri_overlap::{intersect, Sides};
+use super::tri_overlap::{Sides, intersect};
 use super::{ClosestPoints, Tri};
 use crate::math::Vec3;
 
@@ -431,11 +431,7 @@ mod tests {
             a.map(|v| v + lift + point(rng, 0.2))
         };
         let (a, b) = (a.map(|v| v * scale), b.map(|v| v * scale));
-        if k.is_multiple_of(2) {
-            (a, b)
-        } else {
-            (b, a)
-        }
+        if k.is_multiple_of(2) { (a, b) } else { (b, a) }
     }
 
     /// Below the cutoff the answer is the exact one; beyond it, either the exact one or the word

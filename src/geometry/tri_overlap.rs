@@ -10,9 +10,9 @@
 //! from the plane tests. Two orientations then decide the overlap. Coplanar and degenerate
 //! (segment or point) triangles are settled by exact tests in a coordinate plane.
 
-use super::predicates::{orient2d, orient3d, orient3d_exact, PlaneFilter, P2};
-use super::segment_segment::{point_on, recip, seg_seg};
 use super::Tri;
+use super::predicates::{P2, PlaneFilter, orient2d, orient3d, orient3d_exact};
+use super::segment_segment::{point_on, recip, seg_seg};
 use crate::math::Vec3;
 
 /// Whether two triangles share a point. Touching and coplanar overlap count as contact.

@@ -1,11 +1,11 @@
 //! Collision: which triangle pairs of two posed models overlap.
 
-use super::traversal::{descend_first, LeafCache, NodePair, PairStack};
-use super::{prepare, Stats};
+use super::traversal::{LeafCache, NodePair, PairStack, descend_first};
+use super::{Stats, prepare};
 use crate::bounding_volume::OverlapVolume;
 use crate::bvh::{Bvh, NodeRef};
 use crate::error::Error;
-use crate::geometry::{tri_overlap, Tri};
+use crate::geometry::{Tri, tri_overlap};
 use crate::math::{Pose, RelPose};
 use crate::model::{CollisionVolume, Model};
 use std::time::Instant;

@@ -2,7 +2,7 @@
 
 use super::front::{Front, FrontQuery};
 use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
-use super::{prepare, Stats, TriCache};
+use super::{Stats, TriCache, prepare};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;

@@ -30,7 +30,7 @@
 use super::strategy::{Search, Strategy};
 use super::traversal::NodePair;
 use crate::bvh::{Bvh, NodeRef};
-use crate::math::{Mat3, RelPose, Vec3, UNDERFLOW_SLACK};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3};
 use crate::model::Model;
 
 /// How far the points of model 2 may have moved, in model 1's frame, since the front's bounds were

@@ -17,10 +17,10 @@ mod strategy;
 mod tolerance;
 mod traversal;
 
-pub use collide::{collide, collide_into, CollideResult, ContactMode, ContactPair};
-pub use distance::{distance, distance_into, DistanceOptions, DistanceResult};
+pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
+pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
 pub use strategy::{Search, Strategy};
-pub use tolerance::{tolerance, tolerance_into, ToleranceResult};
+pub use tolerance::{ToleranceResult, tolerance, tolerance_into};
 
 use crate::bvh::Bvh;
 use crate::error::Error;

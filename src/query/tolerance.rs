@@ -1,7 +1,7 @@
 //! Tolerance: are two posed models within distance `t` of each other?
 
 use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
-use super::{prepare, Stats, TriCache};
+use super::{Stats, TriCache, prepare};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;

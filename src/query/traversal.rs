@@ -2,7 +2,7 @@
 //! fixed-size stack, so that no query allocates.
 
 use crate::bounding_volume::BoundingVolume;
-use crate::bvh::{NodeRef, MAX_DEPTH};
+use crate::bvh::{MAX_DEPTH, NodeRef};
 use std::mem::MaybeUninit;
 
 /// A node of the BVTT: a node of each hierarchy, and (for distance) the lower bound of the pair.

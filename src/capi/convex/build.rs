@@ -1,6 +1,6 @@
 //! Building convex models (from points, triangles or polygons) and freeing them.
 
-use super::super::{boundary, code, destroy_handle, into_handle, read_doubles, PQP_ERR_INTERNAL};
+use super::super::{PQP_ERR_INTERNAL, boundary, code, destroy_handle, into_handle, read_doubles};
 use super::*;
 use crate::error::Error;
 use std::ptr;

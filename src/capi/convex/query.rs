@@ -4,8 +4,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep the names the rest of the header uses.
 
 use super::super::{
-    boundary, code, deref, deref_mut, destroy_handle, new_handle, read_pose, reset, status,
-    PQP_ERR_INTERNAL,
+    PQP_ERR_INTERNAL, boundary, code, deref, deref_mut, destroy_handle, new_handle, read_pose,
+    reset, status,
 };
 use super::*;
 use crate::convex::{convex_distance, convex_penetration};

@@ -20,11 +20,11 @@ mod strategies;
 mod visit;
 
 pub use super::strategy::{Search, Strategy};
-pub(crate) use bounds::{expand, root_pair, LeafVolumes};
+pub(crate) use bounds::{LeafVolumes, expand, root_pair};
 
+use super::Stats;
 use super::front::{FrontPair, Motion};
 use super::traversal::NodePair;
-use super::Stats;
 use crate::bounding_volume::Ssv;
 use crate::bvh::Bvh;
 use crate::geometry::{Plane, Tri};

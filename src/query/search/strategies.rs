@@ -224,11 +224,7 @@ impl ClosestSearch<'_> {
 /// The smaller of two numbers (no NaN reaches here), as a select.
 #[inline(always)]
 fn least(a: f64, b: f64) -> f64 {
-    if a < b {
-        a
-    } else {
-        b
-    }
+    if a < b { a } else { b }
 }
 
 /// `v` scaled to length 1, or zero when it is zero (or too small or large to scale exactly).

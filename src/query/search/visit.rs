@@ -2,10 +2,10 @@
 //! pair yet kept, the pair left in the front), an inner pair is expanded into its children with
 //! their bounds (`bounds.rs`).
 
-use super::bounds::{expand, leaf_children, Child, LeafChildren};
+use super::bounds::{Child, LeafChildren, expand, leaf_children};
 use super::{Best, ClosestSearch};
 use crate::bounding_volume::Want;
-use crate::geometry::{tri_distance_below, Near};
+use crate::geometry::{Near, tri_distance_below};
 use crate::math::Vec3;
 use crate::query::traversal::NodePair;
 
