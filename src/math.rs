@@ -140,3 +140,17 @@ impl RelPose {
         self.rot.tr_mul(&(p - self.trans))
     }
 }
+
+/// The smaller of two numbers, as a select (for operands that are never NaN: cheaper than
+/// `f64::min`, which must order NaN).
+#[inline(always)]
+pub(crate) fn least(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
+/// The larger of two numbers, as a select (for operands that are never NaN: cheaper than
+/// `f64::max`).
+#[inline(always)]
+pub(crate) fn most(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}

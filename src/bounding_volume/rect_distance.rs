@@ -18,7 +18,7 @@
 //! go through the edges, and an edge is looked at only if a bound from its ends' offsets leaves it
 //! room to beat the best corner.
 
-use crate::math::{Mat3, Vec3};
+use crate::math::{Mat3, Vec3, least, most};
 
 /// Distance between two rectangles (or less, see `cutoff` and `enough` below), with a separating
 /// axis that shows it.
@@ -224,18 +224,6 @@ fn span_gap(q: &[Vec3; 4], k: usize, hi_k: f64) -> f64 {
 #[inline(always)]
 fn beyond(x: f64, y: f64) -> f64 {
     f64::from(u8::from(x > y))
-}
-
-/// The smaller of two numbers (no NaN reaches here; cheaper than `f64::min`).
-#[inline(always)]
-fn least(a: f64, b: f64) -> f64 {
-    if a < b { a } else { b }
-}
-
-/// The larger of two numbers (no NaN reaches here; cheaper than `f64::max`).
-#[inline(always)]
-fn most(a: f64, b: f64) -> f64 {
-    if a > b { a } else { b }
 }
 
 /// `p` minus its nearest point on the rectangle `[0, l[0]] x [0, l[1]] x {0}`.

@@ -5,8 +5,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    DEFAULT_SEARCH_OPTIONS, PosedModel, SearchArg, boundary, count, deref, destroy_handle, getter,
-    new_handle, pair_query, pqp_model, pqp_search_options, status, write_pair,
+    DEFAULT_SEARCH_OPTIONS, PosedModel, SearchArg, boundary, count, destroy_handle, getter,
+    new_handle, pair_query, pqp_model, pqp_search_options, write_triangles,
 };
 use crate::query::{DistanceOptions, DistanceResult, distance_into};
 use std::ffi::c_int;
@@ -82,17 +82,9 @@ pub unsafe extern "C" fn pqp_distance(
     abs_err: f64,
     qsize: c_int,
 ) -> c_int {
+    let search = SearchArg::QueueSize(qsize);
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        distance_query(
-            r,
-            (R1, T1, m1),
-            (R2, T2, m2),
-            rel_err,
-            abs_err,
-            SearchArg::QueueSize(qsize),
-        )
-    }
+    unsafe { distance_query(r, (R1, T1, m1), (R2, T2, m2), rel_err, abs_err, search) }
 }
 
 /// As pqp_distance, with the search chosen by options (NULL: the default search).
@@ -122,17 +114,9 @@ pub unsafe extern "C" fn pqp_distance_search(
     abs_err: f64,
     options: *const pqp_search_options,
 ) -> c_int {
+    let search = SearchArg::Options(options);
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        distance_query(
-            r,
-            (R1, T1, m1),
-            (R2, T2, m2),
-            rel_err,
-            abs_err,
-            SearchArg::Options(options),
-        )
-    }
+    unsafe { distance_query(r, (R1, T1, m1), (R2, T2, m2), rel_err, abs_err, search) }
 }
 
 /// The body of pqp_distance and pqp_distance_search, which differ in how they give the search.
@@ -266,12 +250,7 @@ pub unsafe extern "C" fn pqp_distance_result_triangles(
     t2: *mut c_int,
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        status(|| {
-            let r = &deref(r)?.result;
-            write_pair(t1, t2, r.tri1, r.tri2)
-        })
-    }
+    unsafe { write_triangles(r, t1, t2, |r| (r.result.tri1, r.result.tri2)) }
 }
 
 /// The number of bounding-volume distance tests the last pqp_distance on r performed.

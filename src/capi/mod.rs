@@ -405,25 +405,31 @@ pub(crate) unsafe fn reset<T: Default>(r: *mut T) {
     }
 }
 
-/// Writes a triangle pair to C, or `Err(NullPointer)` (writing nothing) if a pointer is NULL.
+/// The body of pqp_distance_result_triangles and pqp_tolerance_result_triangles: writes the
+/// triangle pair `pair` reads from the result `r` to `t1` and `t2` (nothing when either is NULL).
 ///
 /// # Safety
-/// Each pointer is NULL or writable.
-pub(crate) unsafe fn write_pair(
+/// `r` is NULL or a live handle no other call modifies meanwhile; `t1` and `t2` are NULL or
+/// writable.
+pub(crate) unsafe fn write_triangles<R>(
+    r: *const R,
     t1: *mut c_int,
     t2: *mut c_int,
-    a: i32,
-    b: i32,
-) -> Result<(), Error> {
-    if t1.is_null() || t2.is_null() {
-        return Err(Error::NullPointer);
-    }
-    // SAFETY: neither pointer is NULL, so both are writable (this function's contract).
-    unsafe {
-        t1.write(a);
-        t2.write(b);
-    }
-    Ok(())
+    pair: impl FnOnce(&R) -> (i32, i32),
+) -> c_int {
+    status(|| {
+        // SAFETY: `r` is NULL or a live handle (this function's contract).
+        let (a, b) = pair(unsafe { deref(r) }?);
+        if t1.is_null() || t2.is_null() {
+            return Err(Error::NullPointer);
+        }
+        // SAFETY: neither pointer is NULL, so both are writable (this function's contract).
+        unsafe {
+            t1.write(a);
+            t2.write(b);
+        }
+        Ok(())
+    })
 }
 
 /// Runs a result getter: inside [`boundary`], `get` of the object behind `r`, or `fallback` when

@@ -5,8 +5,8 @@
 #![allow(non_snake_case)] // R1, T1, R2, T2 keep PQP's names, which the header shows.
 
 use super::{
-    PosedModel, SearchArg, count, deref, destroy_handle, getter, new_handle, pair_query, pqp_model,
-    pqp_search_options, status, write_pair,
+    PosedModel, SearchArg, count, destroy_handle, getter, new_handle, pair_query, pqp_model,
+    pqp_search_options, write_triangles,
 };
 use crate::query::{ToleranceResult, tolerance_into};
 use std::ffi::c_int;
@@ -74,16 +74,9 @@ pub unsafe extern "C" fn pqp_tolerance(
     tolerance: f64,
     qsize: c_int,
 ) -> c_int {
+    let search = SearchArg::QueueSize(qsize);
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        tolerance_query(
-            r,
-            (R1, T1, m1),
-            (R2, T2, m2),
-            tolerance,
-            SearchArg::QueueSize(qsize),
-        )
-    }
+    unsafe { tolerance_query(r, (R1, T1, m1), (R2, T2, m2), tolerance, search) }
 }
 
 /// As pqp_tolerance, with the search chosen by options (NULL: the default search).
@@ -112,16 +105,9 @@ pub unsafe extern "C" fn pqp_tolerance_search(
     tolerance: f64,
     options: *const pqp_search_options,
 ) -> c_int {
+    let search = SearchArg::Options(options);
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        tolerance_query(
-            r,
-            (R1, T1, m1),
-            (R2, T2, m2),
-            tolerance,
-            SearchArg::Options(options),
-        )
-    }
+    unsafe { tolerance_query(r, (R1, T1, m1), (R2, T2, m2), tolerance, search) }
 }
 
 /// The body of pqp_tolerance and pqp_tolerance_search, which differ in how they give the search.
@@ -235,12 +221,7 @@ pub unsafe extern "C" fn pqp_tolerance_result_triangles(
     t2: *mut c_int,
 ) -> c_int {
     // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
-    unsafe {
-        status(|| {
-            let r = &deref(r)?.result;
-            write_pair(t1, t2, r.tri1, r.tri2)
-        })
-    }
+    unsafe { write_triangles(r, t1, t2, |r| (r.result.tri1, r.result.tri2)) }
 }
 
 /// The number of bounding-volume distance tests the last pqp_tolerance on r performed.

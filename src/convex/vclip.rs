@@ -67,7 +67,28 @@ struct Side<'a> {
     touch: f64,
 }
 
-impl Side<'_> {
+impl<'a> Side<'a> {
+    /// The two sides of a query of model 2 posed in model 1's frame by `rel`: each side maps the
+    /// other model's points into its own frame.
+    fn pair(m1: &'a ConvexModel, m2: &'a ConvexModel, rel: &RelPose) -> [Side<'a>; 2] {
+        let rt = rel.rot.transpose();
+        let touch = TOUCH_ULPS * f64::EPSILON * (m1.radius() + m2.radius() + rel.trans.norm());
+        [
+            Side {
+                m: m1,
+                rot: rel.rot,
+                trans: rel.trans,
+                touch,
+            },
+            Side {
+                m: m2,
+                rot: rt,
+                trans: -(rt * rel.trans),
+                touch,
+            },
+        ]
+    }
+
     #[inline]
     fn import(&self, p: &Vec3) -> Vec3 {
         self.rot * p + self.trans
@@ -555,22 +576,7 @@ pub(crate) fn vclip(
     rel: &RelPose,
     start: [Feature; 2],
 ) -> Result<VClipAnswer, Error> {
-    let rt = rel.rot.transpose();
-    let touch = TOUCH_ULPS * f64::EPSILON * (m1.radius() + m2.radius() + rel.trans.norm());
-    let sides = [
-        Side {
-            m: m1,
-            rot: rel.rot,
-            trans: rel.trans,
-            touch,
-        },
-        Side {
-            m: m2,
-            rot: rt,
-            trans: -(rt * rel.trans),
-            touch,
-        },
-    ];
+    let sides = Side::pair(m1, m2, rel);
     let bound = feature_count(m1)
         .saturating_mul(feature_count(m2))
         .saturating_mul(4)
@@ -761,22 +767,7 @@ mod tests {
             let t = [0.9 * (k as f64).sin(), 1.7 * (k as f64 * 0.37).cos(), 0.4];
             let p2 = Pose::new([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], t);
             let rel = RelPose::between(&Pose::identity(), &p2);
-            let rt = rel.rot.transpose();
-            let touch = TOUCH_ULPS * f64::EPSILON * (m1.radius() + m2.radius() + rel.trans.norm());
-            let sides = [
-                Side {
-                    m: m1,
-                    rot: rel.rot,
-                    trans: rel.trans,
-                    touch,
-                },
-                Side {
-                    m: m2,
-                    rot: rt,
-                    trans: -(rt * rel.trans),
-                    touch,
-                },
-            ];
+            let sides = Side::pair(m1, m2, &rel);
             let ans = vclip(m1, m2, &rel, [Feature::vertex(0); 2]).unwrap();
             let (_, contact, points, d) = exhaustive(&sides);
             assert_eq!(contact, ans.intersecting, "pair {k}");

@@ -4,7 +4,7 @@
 //! caller's stop rule says so.
 
 use super::ClosestSearch;
-use crate::math::Vec3;
+use crate::math::{Vec3, least};
 use crate::query::front::{FrontPair, Motion};
 use crate::query::queue::RadixQueue;
 use crate::query::traversal::{NodePair, PairStack};
@@ -219,12 +219,6 @@ impl ClosestSearch<'_> {
             queue.drain(|c| self.pruned(&c, Vec3::zeros()));
         });
     }
-}
-
-/// The smaller of two numbers (no NaN reaches here), as a select.
-#[inline(always)]
-fn least(a: f64, b: f64) -> f64 {
-    if a < b { a } else { b }
 }
 
 /// `v` scaled to length 1, or zero when it is zero (or too small or large to scale exactly).
