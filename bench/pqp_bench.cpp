@@ -2,8 +2,10 @@
 //
 //   pqp_bench [--models DIR] [--only w1,w2,...] [--reps N] [--quick] [--ours-only] [--threads N]
 //             [--no-verify]
-// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies
-// (default: all). `strategies` times our distance query with every search strategy (ours only).
+// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies, and
+// pqp13 when built with PQP 1.3 (CMake -DPQP13_SOURCE_DIR; see BENCHMARKS.md) (default: all).
+// `strategies` times our distance query with every search strategy (ours only); `pqp13` runs ours
+// and PQP 1.3 in alternating rounds.
 // --quick shrinks every workload (for valgrind); --ours-only skips FCL (for profiling ours).
 // --fcl-rss-collide also times FCL's collision on BVHModel<RSS> (very slow); --cube F sets the side
 // of the bunny workloads' offset cube in bunny radii (default 2).
@@ -49,6 +51,9 @@
 
 #include "brute.hpp"
 #include "workloads.hpp"
+#ifdef PQP_BENCH_WITH_PQP13
+#include "pqp13_peer.hpp"
+#endif
 
 #ifndef PQP_BENCH_MODELS_DIR
 #define PQP_BENCH_MODELS_DIR "/work/shared/models"
@@ -1182,6 +1187,319 @@ void workload_threads(const Options& o) {
 // ---------------------------------------------------------------------------------------------
 // Report
 
+#ifdef PQP_BENCH_WITH_PQP13
+// ---------------------------------------------------------------------------------------------
+// PQP 1.3 as a peer (built from its sources with -DPQP13_SOURCE_DIR; see pqp13_peer.hpp). Ours and
+// PQP 1.3 run the same poses in alternating rounds (ours first in even rounds, PQP 1.3 first in odd
+// ones); a round times every query on its own and keeps the median over poses; the table gives the
+// median over rounds. Answers are compared in an untimed pass first (which also warms both up).
+
+struct Pqp13Row {
+    std::string workload, query;
+    size_t n;
+    double ours, peer;
+    std::string agree;
+};
+std::vector<Pqp13Row> g_pqp13;
+
+struct Peer13Model {
+    pqp13::Model* m;
+    explicit Peer13Model(const Mesh& mesh) : m(pqp13::build(mesh[0].data(), mesh.size())) {
+        if (!m) die("PQP 1.3 refused a model");
+    }
+    Peer13Model(const Peer13Model&) = delete;
+    Peer13Model& operator=(const Peer13Model&) = delete;
+    ~Peer13Model() { pqp13::destroy(m); }
+};
+
+struct Peer13Results {
+    pqp13::Results* r = pqp13::results_create();
+    Peer13Results() = default;
+    Peer13Results(const Peer13Results&) = delete;
+    Peer13Results& operator=(const Peer13Results&) = delete;
+    ~Peer13Results() { pqp13::results_destroy(r); }
+};
+
+// One pair of meshes with poses, built by both libraries.
+struct Case13 {
+    std::string name;
+    const Mesh* mesh1;
+    const Mesh* mesh2;
+    std::vector<std::pair<Pose, Pose>> poses;
+    OurModel ours1, ours2;
+    Peer13Model peer1, peer2;
+    Case13(std::string n, const Mesh& a, const Mesh& b, std::vector<std::pair<Pose, Pose>> p)
+        : name(std::move(n)), mesh1(&a), mesh2(&b), poses(std::move(p)), ours1(a), ours2(b), peer1(a), peer2(b) {}
+    size_t size() const { return poses.size(); }
+};
+
+int pqp13_rounds(const Options& o) { return std::max(3, o.reps); }
+
+// One round: query(i) for every pose, each timed alone; the median over poses.
+template <class Q>
+double round_median(size_t n, Q&& query) {
+    std::vector<double> t(n);
+    for (size_t i = 0; i < n; ++i) {
+        const auto t0 = Clock::now();
+        query(i);
+        t[i] = secs(t0, Clock::now());
+    }
+    return median(t);
+}
+
+// Alternating rounds of ours and PQP 1.3; the median over rounds of each side's round medians.
+template <class A, class B>
+std::pair<double, double> alternate(size_t n, int rounds, A&& ours, B&& peer) {
+    std::vector<double> a, b;
+    for (int r = 0; r < rounds; ++r) {
+        if (r % 2 == 0) {
+            a.push_back(round_median(n, ours));
+            b.push_back(round_median(n, peer));
+        } else {
+            b.push_back(round_median(n, peer));
+            a.push_back(round_median(n, ours));
+        }
+    }
+    return {median(a), median(b)};
+}
+
+// Distances of both libraries on every pose (untimed), compared.
+std::string compare13_distances(const std::vector<double>& ours, const std::vector<double>& peer) {
+    int differ = 0, ours_lower = 0;
+    double worst = 0;
+    for (size_t i = 0; i < ours.size(); ++i)
+        if (!same_distance(ours[i], peer[i])) {
+            ++differ;
+            ours_lower += ours[i] < peer[i];
+            worst = std::max(worst, std::fabs(ours[i] - peer[i]));
+        }
+    if (differ == 0) return "same distances";
+    // Both report the distance of a triangle pair they found, so the lower one is the better answer.
+    return fmt("%d poses differ (max |d| difference %.3g; ours lower on %d)", differ, worst, ours_lower);
+}
+
+void pqp13_distance(Case13& c, const std::string& workload, const Options& o, double rel_err, const char* query) {
+    const size_t n = c.size();
+    const bool exact = rel_err == 0.0;
+    pqp_distance_result* r = pqp_distance_result_create();
+    Peer13Results pr;
+    std::vector<double> ours(n), peer(n), truth(n);
+    for (size_t i = 0; i < n; ++i) {
+        const auto& p = c.poses[i];
+        check(pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                           c.ours2.m, rel_err, exact ? 0.0 : 1e300, 2),
+              "pqp_distance");
+        ours[i] = pqp_distance_result_distance(r);
+        peer[i] = pqp13::distance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(),
+                                  p.second.T.data(), c.peer2.m, rel_err, exact ? 0.0 : 1e300, 2);
+        if (!exact) {
+            check(pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(),
+                               p.second.T.data(), c.ours2.m, 0.0, 0.0, 2),
+                  "pqp_distance");
+            truth[i] = pqp_distance_result_distance(r);
+        }
+    }
+    std::string agree;
+    if (exact) {
+        agree = compare13_distances(ours, peer);
+    } else {
+        int bad_ours = 0, bad_peer = 0;
+        auto within = [&](double d, double t) { return d >= t * (1 - 1e-12) && d <= t * (1 + rel_err) * (1 + 1e-12); };
+        for (size_t i = 0; i < n; ++i) {
+            bad_ours += !within(ours[i], truth[i]);
+            bad_peer += !within(peer[i], truth[i]);
+        }
+        agree = fmt("bound holds: ours %s, PQP 1.3 %s", bad_ours ? fmt("NO (%d)", bad_ours).c_str() : "yes",
+                    bad_peer ? fmt("NO (%d)", bad_peer).c_str() : "yes");
+    }
+    const auto t = alternate(
+        n, pqp13_rounds(o),
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                         c.ours2.m, rel_err, exact ? 0.0 : 1e300, 2);
+        },
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp13::distance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(), p.second.T.data(),
+                            c.peer2.m, rel_err, exact ? 0.0 : 1e300, 2);
+        });
+    pqp_distance_result_destroy(r);
+    g_pqp13.push_back({workload, query, n, t.first, t.second, agree});
+}
+
+void pqp13_tolerance(Case13& c, const std::string& workload, const Options& o, double tol) {
+    const size_t n = c.size();
+    pqp_tolerance_result* r = pqp_tolerance_result_create();
+    Peer13Results pr;
+    int differ = 0, closer = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const auto& p = c.poses[i];
+        check(pqp_tolerance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                            c.ours2.m, tol, 2),
+              "pqp_tolerance");
+        const int a = pqp_tolerance_result_closer_than_tolerance(r);
+        const int b = pqp13::tolerance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(),
+                                       p.second.T.data(), c.peer2.m, tol, 2);
+        differ += a != b;
+        closer += a;
+    }
+    const auto t = alternate(
+        n, pqp13_rounds(o),
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp_tolerance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                          c.ours2.m, tol, 2);
+        },
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp13::tolerance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(), p.second.T.data(),
+                             c.peer2.m, tol, 2);
+        });
+    pqp_tolerance_result_destroy(r);
+    g_pqp13.push_back({workload, fmt("tolerance %g", tol), n, t.first, t.second,
+                       differ ? fmt("%d flags differ", differ) : fmt("same flags (%d closer)", closer)});
+}
+
+void pqp13_collide(Case13& c, const std::string& workload, const Options& o, bool all) {
+    const size_t n = c.size();
+    const int flag = all ? PQP_ALL_CONTACTS : PQP_FIRST_CONTACT;
+    pqp_collide_result* r = pqp_collide_result_create();
+    Peer13Results pr;
+    int differ = 0, colliding = 0, ours_wrong = 0, peer_wrong = 0;
+    size_t total = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const auto& p = c.poses[i];
+        check(pqp_collide(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                          c.ours2.m, flag),
+              "pqp_collide");
+        PairList a;
+        const pqp_contact_pair* pairs = pqp_collide_result_pairs(r);
+        for (int k = 0; k < pqp_collide_result_num_pairs(r); ++k) a.emplace_back(pairs[k].id1, pairs[k].id2);
+        pqp13::collide(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(), p.second.T.data(),
+                       c.peer2.m, all);
+        PairList b = pqp13::pairs(pr.r);
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        colliding += !a.empty();
+        total += a.size();
+        // All contacts: the same pair sets. First contact: the same verdict (the pair reported may
+        // differ; each is refereed by brute force).
+        const bool same = all ? a == b : a.empty() == b.empty();
+        if (!same) ++differ;
+        if (!same || !all) {
+            // Referee every pair one side reports and the other does not (first contact: the pair).
+            auto touching = [&](const std::pair<int, int>& q) {
+                return brute::pair_distance(*c.mesh1, p.first, q.first, *c.mesh2, p.second, q.second) <= 1e-12;
+            };
+            for (const auto& q : a)
+                if ((!all || !std::binary_search(b.begin(), b.end(), q)) && !touching(q)) ++ours_wrong;
+            for (const auto& q : b)
+                if ((!all || !std::binary_search(a.begin(), a.end(), q)) && !touching(q)) ++peer_wrong;
+        }
+    }
+    std::string agree = differ ? fmt("%d poses differ", differ) : (all ? "same pairs" : "same verdicts");
+    if (ours_wrong || peer_wrong)
+        agree += fmt("; pairs apart by brute force: ours %d, PQP 1.3 %d", ours_wrong, peer_wrong);
+    agree += all ? fmt(" (%d colliding, %zu pairs)", colliding, total) : fmt(" (%d colliding)", colliding);
+    const auto t = alternate(
+        n, pqp13_rounds(o),
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp_collide(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                        c.ours2.m, flag);
+        },
+        [&](size_t i) {
+            const auto& p = c.poses[i];
+            pqp13::collide(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(), p.second.T.data(),
+                           c.peer2.m, all);
+        });
+    pqp_collide_result_destroy(r);
+    g_pqp13.push_back({workload, all ? "collide all" : "collide first", n, t.first, t.second, agree});
+}
+
+// Builds: rounds alternate which library builds first; the median over rounds of each build time.
+void pqp13_build(const Mesh& m, int rounds) {
+    std::vector<double> a, b;
+    double ours_bytes = 0, peer_bytes = 0;
+    for (int r = 0; r < rounds; ++r)
+        for (int side = 0; side < 2; ++side) {
+            const bool ours = (side == 0) == (r % 2 == 0);
+            const auto t0 = Clock::now();
+            if (ours) {
+                pqp_model* model = build_ours(m);
+                a.push_back(secs(t0, Clock::now()));
+                ours_bytes = static_cast<double>(pqp_model_memory_usage(model));
+                pqp_model_destroy(model);
+            } else {
+                pqp13::Model* model = pqp13::build(m[0].data(), m.size());
+                b.push_back(secs(t0, Clock::now()));
+                if (!model) die("PQP 1.3 refused a model");
+                peer_bytes = pqp13::memory_usage(model);
+                pqp13::destroy(model);
+            }
+        }
+    const double n = static_cast<double>(m.size());
+    g_pqp13.push_back({"build", fmt("%zu triangles", m.size()), 1, median(a), median(b),
+                       fmt("bytes/tri: ours %.0f, PQP 1.3 %.0f (each library's report)", ours_bytes / n,
+                           peer_bytes / n)});
+}
+
+void workload_pqp13(const Options& o) {
+    {
+        const Mesh sphere = uv_sphere(1.0, kSphereLat, kSphereLon);
+        const auto sp = spheres_poses(o.quick ? 10 : 100);
+        std::vector<std::pair<Pose, Pose>> poses;
+        for (const auto& p : sp) poses.emplace_back(p.p1, p.p2);
+        Case13 c("spheres", sphere, sphere, poses);
+        pqp13_distance(c, "1 spheres-distance", o, 0.0, "distance");
+    }
+    {
+        // Shells: a query takes a large fraction of a second; the first 10 of workload 2's poses.
+        const Mesh inner = uv_sphere(1.0, kSphereLat, kSphereLon);
+        const Mesh outer = uv_sphere(1.05, kSphereLat, kSphereLon);
+        Rng rng(2);
+        std::vector<std::pair<Pose, Pose>> poses;
+        const Pose id{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
+        for (int k = 0; k < (o.quick ? 2 : 10); ++k) poses.emplace_back(id, Pose{random_rotation(rng), {0, 0, 0}});
+        Case13 c("shells", inner, outer, poses);
+        pqp13_distance(c, "2 shells", o, 0.0, "distance exact");
+        pqp13_distance(c, "2 shells", o, 0.1, "distance rel_err 0.1");
+    }
+    {
+        const Mesh bunny = load_tris(o.models + "/bunny.tris");
+        const Mesh torus = load_tris(o.models + "/torus.tris");
+        const double radius = 0.5 * bounds(bunny).size();
+        const int n = o.quick ? 200 : 1000;
+        for (int which = 0; which < 2; ++which) {
+            const Mesh& other = which == 0 ? bunny : torus;
+            const std::string name = which == 0 ? "bunny-bunny" : "bunny-torus";
+            Case13 c(name, bunny, other, bunny_poses(bunny, other, 0.5 * o.cube * radius, n));
+            pqp13_collide(c, "3 " + name, o, true);
+            pqp13_collide(c, "3 " + name, o, false);
+            pqp13_distance(c, "4 " + name, o, 0.0, "distance");
+            pqp13_distance(c, "4 " + name, o, 0.05, "distance rel_err 0.05");
+            pqp13_tolerance(c, "4 " + name, o, 0.05);
+        }
+    }
+    {
+        // Coherent motion: each library keeps what speeds up the next query of the path (ours in
+        // the reused result object, PQP 1.3 in the models' last_tri).
+        const Mesh t1 = load_tris(o.models + "/torus1.tris");
+        const Mesh t2 = load_tris(o.models + "/torus2.tris");
+        const auto p1 = load_path(o.models + "/torus1.path");
+        const auto p2 = load_path(o.models + "/torus2.path");
+        std::vector<std::pair<Pose, Pose>> poses;
+        const size_t n = o.quick ? std::min<size_t>(300, p1.size()) : std::min(p1.size(), p2.size());
+        for (size_t k = 0; k < n; ++k) poses.emplace_back(p1[k], p2[k]);
+        Case13 c("coherent", t1, t2, poses);
+        pqp13_distance(c, "5 coherent", o, 0.0, "distance, result reused");
+    }
+    pqp13_build(uv_sphere(1.0, kSphereLat, kSphereLon), std::max(5, pqp13_rounds(o)));
+    if (!o.quick) pqp13_build(uv_sphere(1.0, 501, 1000), pqp13_rounds(o));
+}
+#endif
+
 std::string load_average() {
     std::ifstream in("/proc/loadavg");
     std::string a, b, c;
@@ -1189,7 +1507,15 @@ std::string load_average() {
     return a + " " + b + " " + c;
 }
 
+void report_queries();
+void report_rest(const Options& o);
+
 void report(const Options& o) {
+    if (!g_rows.empty()) report_queries();
+    report_rest(o);
+}
+
+void report_queries() {
     std::printf("\n## Queries (median microseconds per query; FCL column is FCL's fastest BV type)\n\n");
     std::printf("| workload | query | poses | ours (us) | FCL (us) | FCL BV | FCL/ours | ours BV tests/q | ours tri "
                 "tests/q | checksum ours | checksum FCL | agree |\n");
@@ -1208,6 +1534,9 @@ void report(const Options& o) {
     for (const auto& r : g_rows)
         if (!r.note.empty()) std::printf("\nNote (%s / %s): %s", r.workload.c_str(), r.query.c_str(), r.note.c_str());
     std::printf("\n");
+}
+
+void report_rest(const Options& o) {
     if (!g_variants.empty()) {
         std::printf("\n## Every FCL BV type\n\n| workload | query | FCL BV | median (us) | mean (us) | FCL BV tests/q | "
                     "FCL tri tests/q | checksum | agrees with ours |\n|---|---|---|---:|---:|---:|---:|---|---|\n");
@@ -1244,6 +1573,19 @@ void report(const Options& o) {
             std::printf("| %s | %s | %zu | %.2f | %.2f | %.0f | %.1f | %.12f |\n", r.workload.c_str(),
                         r.strategy.c_str(), r.poses, r.med * 1e6, r.mean_ * 1e6, r.bv, r.tri, r.sum);
     }
+#ifdef PQP_BENCH_WITH_PQP13
+    if (!g_pqp13.empty()) {
+        std::printf("\n## Against PQP 1.3 (median over %d alternating rounds of the median us per query; builds "
+                    "in ms)\n\n| workload | query | poses | ours | PQP 1.3 | PQP 1.3/ours | answers |\n"
+                    "|---|---|---:|---:|---:|---:|---|\n",
+                    pqp13_rounds(o));
+        for (const auto& r : g_pqp13) {
+            const double scale = r.workload == "build" ? 1e3 : 1e6;
+            std::printf("| %s | %s | %zu | %.2f | %.2f | %.2f | %s |\n", r.workload.c_str(), r.query.c_str(), r.n,
+                        r.ours * scale, r.peer * scale, r.peer / r.ours, r.agree.c_str());
+        }
+    }
+#endif
     if (!g_notes.empty()) {
         std::printf("\n## Notes and disagreements\n\n");
         for (const auto& n : g_notes) std::printf("- %s\n", n.c_str());
@@ -1283,7 +1625,7 @@ Options parse(int argc, char** argv) {
         } else {
             die("unknown option " + a +
                 " (see the comment at the top of bench/pqp_bench.cpp; workloads: spheres shells bunny-collide "
-                "bunny-distance coherent build threads strategies)");
+                "bunny-distance coherent build threads strategies pqp13)");
         }
     }
     return o;
@@ -1308,6 +1650,9 @@ int main(int argc, char** argv) {
     if (o.want("build")) stage("build"), workload_build(o);
     if (o.want("threads")) stage("threads"), workload_threads(o);
     if (o.want("strategies")) stage("strategies"), workload_strategies(o);
+#ifdef PQP_BENCH_WITH_PQP13
+    if (o.want("pqp13")) stage("pqp13"), workload_pqp13(o);
+#endif
     report(o);
     return 0;
 }
