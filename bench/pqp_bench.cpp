@@ -2,8 +2,10 @@
 //
 //   pqp_bench [--models DIR] [--only w1,w2,...] [--reps N] [--quick] [--ours-only] [--threads N]
 //             [--no-verify]
-// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies
-// (default: all). `strategies` times our distance query with every search strategy (ours only).
+// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies, and
+// peers when built with PQP 1.3 or Coal (CMake -DPQP13_SOURCE_DIR, -DCOAL_PREFIX; see
+// BENCHMARKS.md) (default: all). `strategies` times our distance query with every search strategy
+// (ours only); `peers` runs ours, PQP 1.3 and Coal in alternating rounds.
 // --quick shrinks every workload (for valgrind); --ours-only skips FCL (for profiling ours).
 // --fcl-rss-collide also times FCL's collision on BVHModel<RSS> (very slow); --cube F sets the side
 // of the bunny workloads' offset cube in bunny radii (default 2).
@@ -49,6 +51,12 @@
 
 #include "brute.hpp"
 #include "workloads.hpp"
+#ifdef PQP_BENCH_WITH_PQP13
+#include "pqp13_peer.hpp"
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+#include "coal_peer.hpp"
+#endif
 
 #ifndef PQP_BENCH_MODELS_DIR
 #define PQP_BENCH_MODELS_DIR "/work/shared/models"
@@ -1182,6 +1190,416 @@ void workload_threads(const Options& o) {
 // ---------------------------------------------------------------------------------------------
 // Report
 
+#if defined(PQP_BENCH_WITH_PQP13) || defined(PQP_BENCH_WITH_COAL)
+// ---------------------------------------------------------------------------------------------
+// PQP 1.3 and Coal 3 as peers (built from PQP 1.3's sources with -DPQP13_SOURCE_DIR, and against
+// Coal's pip package with -DCOAL_PREFIX; see pqp13_peer.hpp, coal_peer.hpp). Ours and the peers run
+// the same poses in alternating rounds (the order of the libraries rotates from round to round); a
+// round times every query on its own and keeps the median over poses; the table gives the median
+// over rounds. Answers are compared with ours in an untimed pass first (which also warms up).
+
+struct PeerRow {
+    std::string workload, query;
+    size_t n = 0;
+    double ours = NAN, pqp13 = NAN, coal = NAN;
+    std::string agree13, agree_coal;
+};
+std::vector<PeerRow> g_peers;
+
+#ifdef PQP_BENCH_WITH_PQP13
+struct Peer13Model {
+    pqp13::Model* m;
+    explicit Peer13Model(const Mesh& mesh) : m(pqp13::build(mesh[0].data(), mesh.size())) {
+        if (!m) die("PQP 1.3 refused a model");
+    }
+    Peer13Model(const Peer13Model&) = delete;
+    Peer13Model& operator=(const Peer13Model&) = delete;
+    ~Peer13Model() { pqp13::destroy(m); }
+};
+
+struct Peer13Results {
+    pqp13::Results* r = pqp13::results_create();
+    Peer13Results() = default;
+    Peer13Results(const Peer13Results&) = delete;
+    Peer13Results& operator=(const Peer13Results&) = delete;
+    ~Peer13Results() { pqp13::results_destroy(r); }
+};
+#endif
+
+#ifdef PQP_BENCH_WITH_COAL
+struct CoalModel {
+    coalpeer::Model* m;
+    explicit CoalModel(const Mesh& mesh) : m(coalpeer::build(mesh[0].data(), mesh.size())) {}
+    CoalModel(const CoalModel&) = delete;
+    CoalModel& operator=(const CoalModel&) = delete;
+    ~CoalModel() { coalpeer::destroy(m); }
+};
+#endif
+
+// One pair of meshes with poses, built by every library.
+struct PeerCase {
+    std::string name;
+    const Mesh* mesh1;
+    const Mesh* mesh2;
+    std::vector<std::pair<Pose, Pose>> poses;
+    OurModel ours1, ours2;
+#ifdef PQP_BENCH_WITH_PQP13
+    Peer13Model peer1, peer2;
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+    CoalModel coal1, coal2;
+#endif
+    PeerCase(std::string n, const Mesh& a, const Mesh& b, std::vector<std::pair<Pose, Pose>> p)
+        : name(std::move(n)), mesh1(&a), mesh2(&b), poses(std::move(p)), ours1(a), ours2(b)
+#ifdef PQP_BENCH_WITH_PQP13
+          , peer1(a), peer2(b)
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+          , coal1(a), coal2(b)
+#endif
+    {}
+    size_t size() const { return poses.size(); }
+};
+
+int peer_rounds(const Options& o) { return std::max(3, o.reps); }
+
+// One round: query(i) for every pose, each timed alone; the median over poses.
+double round_median(size_t n, const std::function<void(size_t)>& query) {
+    std::vector<double> t(n);
+    for (size_t i = 0; i < n; ++i) {
+        const auto t0 = Clock::now();
+        query(i);
+        t[i] = secs(t0, Clock::now());
+    }
+    return median(t);
+}
+
+// The libraries of a row: ours first, then the peers built in.
+enum Side { kOurs, kPqp13, kCoal };
+struct Timed {
+    Side side;
+    std::function<void(size_t)> query;
+};
+
+// Alternating rounds (round r starts with library r mod k); each library's median over rounds.
+std::map<Side, double> alternate(size_t n, int rounds, const std::vector<Timed>& libs) {
+    std::map<Side, std::vector<double>> t;
+    const size_t k = libs.size();
+    for (int r = 0; r < rounds; ++r)
+        for (size_t j = 0; j < k; ++j) {
+            const Timed& lib = libs[(static_cast<size_t>(r) + j) % k];
+            t[lib.side].push_back(round_median(n, lib.query));
+        }
+    std::map<Side, double> out;
+    for (const auto& e : t) out[e.first] = median(e.second);
+    return out;
+}
+
+void add_peer_row(const std::string& workload, const std::string& query, size_t n,
+                  const std::map<Side, double>& t, const std::string& agree13, const std::string& agree_coal) {
+    PeerRow row;
+    row.workload = workload;
+    row.query = query;
+    row.n = n;
+    row.ours = t.at(kOurs);
+    if (t.count(kPqp13)) row.pqp13 = t.at(kPqp13);
+    if (t.count(kCoal)) row.coal = t.at(kCoal);
+    row.agree13 = agree13;
+    row.agree_coal = agree_coal;
+    g_peers.push_back(row);
+}
+
+// A peer's distances against ours (untimed), compared.
+std::string compare_peer_distances(const std::vector<double>& ours, const std::vector<double>& peer) {
+    int differ = 0, ours_lower = 0;
+    double worst = 0;
+    for (size_t i = 0; i < ours.size(); ++i)
+        if (!same_distance(ours[i], peer[i])) {
+            ++differ;
+            ours_lower += ours[i] < peer[i];
+            worst = std::max(worst, std::fabs(ours[i] - peer[i]));
+        }
+    if (differ == 0) return "same distances";
+    // Each reports the distance of a triangle pair it found, so the lower one is the better answer.
+    return fmt("%d poses differ (max |d| difference %.3g; ours lower on %d)", differ, worst, ours_lower);
+}
+
+// Approximate distances against the exact ones (ours, rel_err 0).
+std::string check_bound(const std::vector<double>& d, const std::vector<double>& truth, double rel_err) {
+    int bad = 0;
+    for (size_t i = 0; i < d.size(); ++i)
+        bad += !(d[i] >= truth[i] * (1 - 1e-12) - 1e-12 && d[i] <= truth[i] * (1 + rel_err) * (1 + 1e-12) + 1e-12);
+    return bad ? fmt("bound broken on %d poses", bad) : "within the bound";
+}
+
+void peer_distance(PeerCase& c, const std::string& workload, const Options& o, double rel_err, const char* query) {
+    const size_t n = c.size();
+    const bool exact = rel_err == 0.0;
+    const double abs_err = exact ? 0.0 : 1e300;
+    pqp_distance_result* r = pqp_distance_result_create();
+    auto ours_q = [&](size_t i, double rel, double abs) {
+        const auto& p = c.poses[i];
+        check(pqp_distance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                           c.ours2.m, rel, abs, 2),
+              "pqp_distance");
+        return pqp_distance_result_distance(r);
+    };
+    std::vector<double> ours(n), truth(n);
+    for (size_t i = 0; i < n; ++i) {
+        ours[i] = ours_q(i, rel_err, abs_err);
+        truth[i] = exact ? ours[i] : ours_q(i, 0.0, 0.0);
+    }
+    std::vector<Timed> libs{{kOurs, [&](size_t i) { ours_q(i, rel_err, abs_err); }}};
+    std::string agree13 = "-", agree_coal = "-";
+#ifdef PQP_BENCH_WITH_PQP13
+    Peer13Results pr;
+    auto peer_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        return pqp13::distance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(),
+                               p.second.T.data(), c.peer2.m, rel_err, abs_err, 2);
+    };
+    std::vector<double> d13(n);
+    for (size_t i = 0; i < n; ++i) d13[i] = peer_q(i);
+    agree13 = exact ? compare_peer_distances(ours, d13) : check_bound(d13, truth, rel_err);
+    libs.push_back({kPqp13, [&](size_t i) { peer_q(i); }});
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+    auto coal_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        return coalpeer::distance(p.first.R.data(), p.first.T.data(), c.coal1.m, p.second.R.data(), p.second.T.data(),
+                                  c.coal2.m, rel_err, exact ? 0.0 : 1e300);
+    };
+    std::vector<double> dc(n);
+    for (size_t i = 0; i < n; ++i) dc[i] = std::max(0.0, coal_q(i));  // Coal signs penetration
+    agree_coal = exact ? compare_peer_distances(ours, dc) : check_bound(dc, truth, rel_err);
+    libs.push_back({kCoal, [&](size_t i) { coal_q(i); }});
+#endif
+    if (!exact) {
+        const std::string b = check_bound(ours, truth, rel_err);
+        if (b != "within the bound") g_notes.push_back(workload + "/" + query + ": ours " + b);
+    }
+    const auto t = alternate(n, peer_rounds(o), libs);
+    pqp_distance_result_destroy(r);
+    add_peer_row(workload, query, n, t, agree13, agree_coal);
+}
+
+void peer_tolerance(PeerCase& c, const std::string& workload, const Options& o, double tol) {
+    const size_t n = c.size();
+    pqp_tolerance_result* r = pqp_tolerance_result_create();
+    auto ours_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        check(pqp_tolerance(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                            c.ours2.m, tol, 2),
+              "pqp_tolerance");
+        return pqp_tolerance_result_closer_than_tolerance(r);
+    };
+    std::vector<int> ours(n);
+    int closer = 0;
+    for (size_t i = 0; i < n; ++i) closer += ours[i] = ours_q(i);
+    auto flags = [&](const std::vector<int>& f) {
+        int differ = 0;
+        for (size_t i = 0; i < n; ++i) differ += f[i] != ours[i];
+        return differ ? fmt("%d flags differ", differ) : fmt("same flags (%d closer)", closer);
+    };
+    std::vector<Timed> libs{{kOurs, [&](size_t i) { ours_q(i); }}};
+    std::string agree13 = "-", agree_coal = "-";
+#ifdef PQP_BENCH_WITH_PQP13
+    Peer13Results pr;
+    auto peer_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        return pqp13::tolerance(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(),
+                                p.second.T.data(), c.peer2.m, tol, 2);
+    };
+    std::vector<int> f13(n);
+    for (size_t i = 0; i < n; ++i) f13[i] = peer_q(i);
+    agree13 = flags(f13);
+    libs.push_back({kPqp13, [&](size_t i) { peer_q(i); }});
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+    // Coal has no tolerance query: an exact distance query, then d <= tol (as FCL in section 1).
+    auto coal_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        return coalpeer::distance(p.first.R.data(), p.first.T.data(), c.coal1.m, p.second.R.data(), p.second.T.data(),
+                                  c.coal2.m, 0.0, 0.0) <= tol
+                   ? 1
+                   : 0;
+    };
+    std::vector<int> fc(n);
+    for (size_t i = 0; i < n; ++i) fc[i] = coal_q(i);
+    agree_coal = flags(fc) + " (exact distance, then d <= t)";
+    libs.push_back({kCoal, [&](size_t i) { coal_q(i); }});
+#endif
+    const auto t = alternate(n, peer_rounds(o), libs);
+    pqp_tolerance_result_destroy(r);
+    add_peer_row(workload, fmt("tolerance %g", tol), n, t, agree13, agree_coal);
+}
+
+void peer_collide(PeerCase& c, const std::string& workload, const Options& o, bool all) {
+    const size_t n = c.size();
+    const int flag = all ? PQP_ALL_CONTACTS : PQP_FIRST_CONTACT;
+    pqp_collide_result* r = pqp_collide_result_create();
+    auto ours_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        check(pqp_collide(r, p.first.R.data(), p.first.T.data(), c.ours1.m, p.second.R.data(), p.second.T.data(),
+                          c.ours2.m, flag),
+              "pqp_collide");
+    };
+    std::vector<PairList> ours(n);
+    int colliding = 0;
+    size_t total = 0;
+    for (size_t i = 0; i < n; ++i) {
+        ours_q(i);
+        const pqp_contact_pair* pairs = pqp_collide_result_pairs(r);
+        for (int k = 0; k < pqp_collide_result_num_pairs(r); ++k) ours[i].emplace_back(pairs[k].id1, pairs[k].id2);
+        std::sort(ours[i].begin(), ours[i].end());
+        colliding += !ours[i].empty();
+        total += ours[i].size();
+    }
+    // A peer's pairs against ours: all contacts, the same sets; first contact, the same verdicts.
+    // Pairs one side reports and the other does not (first contact: every pair) are refereed by
+    // brute force.
+    auto compare = [&](const std::vector<PairList>& peer) {
+        int differ = 0, ours_wrong = 0, peer_wrong = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const PairList& a = ours[i];
+            const PairList& b = peer[i];
+            const bool same = all ? a == b : a.empty() == b.empty();
+            differ += !same;
+            if (same && all) continue;
+            const auto& p = c.poses[i];
+            auto touching = [&](const std::pair<int, int>& q) {
+                return brute::pair_distance(*c.mesh1, p.first, q.first, *c.mesh2, p.second, q.second) <= 1e-12;
+            };
+            for (const auto& q : a)
+                if ((!all || !std::binary_search(b.begin(), b.end(), q)) && !touching(q)) ++ours_wrong;
+            for (const auto& q : b)
+                if ((!all || !std::binary_search(a.begin(), a.end(), q)) && !touching(q)) ++peer_wrong;
+        }
+        std::string s = differ ? fmt("%d poses differ", differ) : (all ? "same pairs" : "same verdicts");
+        if (ours_wrong || peer_wrong) s += fmt("; pairs apart by brute force: ours %d, peer %d", ours_wrong, peer_wrong);
+        return s + (all ? fmt(" (%d colliding, %zu pairs)", colliding, total) : fmt(" (%d colliding)", colliding));
+    };
+    std::vector<Timed> libs{{kOurs, ours_q}};
+    std::string agree13 = "-", agree_coal = "-";
+#ifdef PQP_BENCH_WITH_PQP13
+    Peer13Results pr;
+    auto peer_q = [&](size_t i) {
+        const auto& p = c.poses[i];
+        pqp13::collide(pr.r, p.first.R.data(), p.first.T.data(), c.peer1.m, p.second.R.data(), p.second.T.data(),
+                       c.peer2.m, all);
+    };
+    std::vector<PairList> p13(n);
+    for (size_t i = 0; i < n; ++i) {
+        peer_q(i);
+        p13[i] = pqp13::pairs(pr.r);
+        std::sort(p13[i].begin(), p13[i].end());
+    }
+    agree13 = compare(p13);
+    libs.push_back({kPqp13, peer_q});
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+    std::vector<PairList> pc(n);
+    for (size_t i = 0; i < n; ++i) {
+        const auto& p = c.poses[i];
+        pc[i] = coalpeer::collide(p.first.R.data(), p.first.T.data(), c.coal1.m, p.second.R.data(), p.second.T.data(),
+                                  c.coal2.m, all);
+        std::sort(pc[i].begin(), pc[i].end());
+    }
+    agree_coal = compare(pc);
+    libs.push_back({kCoal, [&](size_t i) {
+                        const auto& p = c.poses[i];
+                        coalpeer::collide_count(p.first.R.data(), p.first.T.data(), c.coal1.m, p.second.R.data(),
+                                                p.second.T.data(), c.coal2.m, all);
+                    }});
+#endif
+    const auto t = alternate(n, peer_rounds(o), libs);
+    pqp_collide_result_destroy(r);
+    add_peer_row(workload, all ? "collide all" : "collide first", n, t, agree13, agree_coal);
+}
+
+// Builds: the order of the libraries rotates from round to round; each one's median build time.
+void peer_build(const Mesh& m, int rounds) {
+    std::vector<Timed> libs{{kOurs, [&](size_t) { pqp_model_destroy(build_ours(m)); }}};
+    std::string agree13 = "-", agree_coal = "-";
+    const double n = static_cast<double>(m.size());
+    {
+        pqp_model* model = build_ours(m);
+        agree13 = agree_coal = fmt("bytes/tri: ours %.0f", static_cast<double>(pqp_model_memory_usage(model)) / n);
+        pqp_model_destroy(model);
+    }
+#ifdef PQP_BENCH_WITH_PQP13
+    {
+        pqp13::Model* model = pqp13::build(m[0].data(), m.size());
+        if (!model) die("PQP 1.3 refused a model");
+        agree13 += fmt(", PQP 1.3 %.0f (its MemUsage)", pqp13::memory_usage(model) / n);
+        pqp13::destroy(model);
+    }
+    libs.push_back({kPqp13, [&](size_t) { pqp13::destroy(pqp13::build(m[0].data(), m.size())); }});
+#endif
+#ifdef PQP_BENCH_WITH_COAL
+    libs.push_back({kCoal, [&](size_t) { coalpeer::destroy(coalpeer::build(m[0].data(), m.size())); }});
+#endif
+    // A build is timed with its model's destruction (untimed would need the model kept: 1M
+    // triangles each); destruction is a small part of a build.
+    const auto t = alternate(1, rounds, libs);
+    add_peer_row("build", fmt("%zu triangles", m.size()), 1, t, agree13, agree_coal);
+}
+
+void workload_peers(const Options& o) {
+    {
+        const Mesh sphere = uv_sphere(1.0, kSphereLat, kSphereLon);
+        const auto sp = spheres_poses(o.quick ? 10 : 100);
+        std::vector<std::pair<Pose, Pose>> poses;
+        for (const auto& p : sp) poses.emplace_back(p.p1, p.p2);
+        PeerCase c("spheres", sphere, sphere, poses);
+        peer_distance(c, "1 spheres-distance", o, 0.0, "distance");
+    }
+    {
+        // Shells: a query takes a large fraction of a second; the first 10 of workload 2's poses.
+        const Mesh inner = uv_sphere(1.0, kSphereLat, kSphereLon);
+        const Mesh outer = uv_sphere(1.05, kSphereLat, kSphereLon);
+        Rng rng(2);
+        std::vector<std::pair<Pose, Pose>> poses;
+        const Pose id{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}};
+        for (int k = 0; k < (o.quick ? 2 : 10); ++k) poses.emplace_back(id, Pose{random_rotation(rng), {0, 0, 0}});
+        PeerCase c("shells", inner, outer, poses);
+        peer_distance(c, "2 shells", o, 0.0, "distance exact");
+        peer_distance(c, "2 shells", o, 0.1, "distance rel_err 0.1");
+    }
+    {
+        const Mesh bunny = load_tris(o.models + "/bunny.tris");
+        const Mesh torus = load_tris(o.models + "/torus.tris");
+        const double radius = 0.5 * bounds(bunny).size();
+        const int n = o.quick ? 200 : 1000;
+        for (int which = 0; which < 2; ++which) {
+            const Mesh& other = which == 0 ? bunny : torus;
+            const std::string name = which == 0 ? "bunny-bunny" : "bunny-torus";
+            PeerCase c(name, bunny, other, bunny_poses(bunny, other, 0.5 * o.cube * radius, n));
+            peer_collide(c, "3 " + name, o, true);
+            peer_collide(c, "3 " + name, o, false);
+            peer_distance(c, "4 " + name, o, 0.0, "distance");
+            peer_distance(c, "4 " + name, o, 0.05, "distance rel_err 0.05");
+            peer_tolerance(c, "4 " + name, o, 0.05);
+        }
+    }
+    {
+        // Coherent motion: each library keeps what speeds up the next query of the path (ours in
+        // the reused result object, PQP 1.3 in the models' last_tri; Coal keeps nothing).
+        const Mesh t1 = load_tris(o.models + "/torus1.tris");
+        const Mesh t2 = load_tris(o.models + "/torus2.tris");
+        const auto p1 = load_path(o.models + "/torus1.path");
+        const auto p2 = load_path(o.models + "/torus2.path");
+        std::vector<std::pair<Pose, Pose>> poses;
+        const size_t n = o.quick ? std::min<size_t>(300, p1.size()) : std::min(p1.size(), p2.size());
+        for (size_t k = 0; k < n; ++k) poses.emplace_back(p1[k], p2[k]);
+        PeerCase c("coherent", t1, t2, poses);
+        peer_distance(c, "5 coherent", o, 0.0, "distance, result reused");
+    }
+    peer_build(uv_sphere(1.0, kSphereLat, kSphereLon), std::max(5, peer_rounds(o)));
+    if (!o.quick) peer_build(uv_sphere(1.0, 501, 1000), peer_rounds(o));
+}
+#endif
+
 std::string load_average() {
     std::ifstream in("/proc/loadavg");
     std::string a, b, c;
@@ -1189,7 +1607,15 @@ std::string load_average() {
     return a + " " + b + " " + c;
 }
 
+void report_queries();
+void report_rest(const Options& o);
+
 void report(const Options& o) {
+    if (!g_rows.empty()) report_queries();
+    report_rest(o);
+}
+
+void report_queries() {
     std::printf("\n## Queries (median microseconds per query; FCL column is FCL's fastest BV type)\n\n");
     std::printf("| workload | query | poses | ours (us) | FCL (us) | FCL BV | FCL/ours | ours BV tests/q | ours tri "
                 "tests/q | checksum ours | checksum FCL | agree |\n");
@@ -1208,6 +1634,9 @@ void report(const Options& o) {
     for (const auto& r : g_rows)
         if (!r.note.empty()) std::printf("\nNote (%s / %s): %s", r.workload.c_str(), r.query.c_str(), r.note.c_str());
     std::printf("\n");
+}
+
+void report_rest(const Options& o) {
     if (!g_variants.empty()) {
         std::printf("\n## Every FCL BV type\n\n| workload | query | FCL BV | median (us) | mean (us) | FCL BV tests/q | "
                     "FCL tri tests/q | checksum | agrees with ours |\n|---|---|---|---:|---:|---:|---:|---|---|\n");
@@ -1244,6 +1673,23 @@ void report(const Options& o) {
             std::printf("| %s | %s | %zu | %.2f | %.2f | %.0f | %.1f | %.12f |\n", r.workload.c_str(),
                         r.strategy.c_str(), r.poses, r.med * 1e6, r.mean_ * 1e6, r.bv, r.tri, r.sum);
     }
+#if defined(PQP_BENCH_WITH_PQP13) || defined(PQP_BENCH_WITH_COAL)
+    if (!g_peers.empty()) {
+        std::printf("\n## Against PQP 1.3 and Coal (median over %d alternating rounds of the median us per query; "
+                    "builds in ms; - where a peer is not built in)\n\n| workload | query | poses | ours | PQP 1.3 | "
+                    "PQP 1.3/ours | Coal | Coal/ours | answers of PQP 1.3 | answers of Coal |\n"
+                    "|---|---|---:|---:|---:|---:|---:|---:|---|---|\n",
+                    peer_rounds(o));
+        auto num = [](double x, double scale) { return std::isnan(x) ? std::string("-") : fmt("%.2f", x * scale); };
+        for (const auto& r : g_peers) {
+            const double scale = r.workload == "build" ? 1e3 : 1e6;
+            std::printf("| %s | %s | %zu | %.2f | %s | %s | %s | %s | %s | %s |\n", r.workload.c_str(), r.query.c_str(),
+                        r.n, r.ours * scale, num(r.pqp13, scale).c_str(), num(r.pqp13 / r.ours, 1).c_str(),
+                        num(r.coal, scale).c_str(), num(r.coal / r.ours, 1).c_str(), r.agree13.c_str(),
+                        r.agree_coal.c_str());
+        }
+    }
+#endif
     if (!g_notes.empty()) {
         std::printf("\n## Notes and disagreements\n\n");
         for (const auto& n : g_notes) std::printf("- %s\n", n.c_str());
@@ -1283,7 +1729,7 @@ Options parse(int argc, char** argv) {
         } else {
             die("unknown option " + a +
                 " (see the comment at the top of bench/pqp_bench.cpp; workloads: spheres shells bunny-collide "
-                "bunny-distance coherent build threads strategies)");
+                "bunny-distance coherent build threads strategies peers)");
         }
     }
     return o;
@@ -1308,6 +1754,9 @@ int main(int argc, char** argv) {
     if (o.want("build")) stage("build"), workload_build(o);
     if (o.want("threads")) stage("threads"), workload_threads(o);
     if (o.want("strategies")) stage("strategies"), workload_strategies(o);
+#if defined(PQP_BENCH_WITH_PQP13) || defined(PQP_BENCH_WITH_COAL)
+    if (o.want("peers")) stage("peers"), workload_peers(o);
+#endif
     report(o);
     return 0;
 }

@@ -41,12 +41,12 @@ struct BV
     int first_child;   /* >= 0: index of the first child; < 0: -(index + 1) of the triangle */
 
     /* 1 for a leaf (a volume holding one triangle), else 0. */
-    int Leaf() const { return first_child < 0; }
+    int Leaf() { return first_child < 0; }
 
     /* The size the search compares to choose which volume to split: the rectangle's diagonal plus
      * the sphere's diameter (with PQP_BV_TYPE including RSS_TYPE, the default), else the box's
      * squared half diagonal. */
-    PQP_REAL GetSize() const
+    PQP_REAL GetSize()
     {
 #if PQP_BV_TYPE & RSS_TYPE
         return (PQP_REAL)(sqrt((double)l[0] * l[0] + (double)l[1] * l[1]) + 2.0 * r);

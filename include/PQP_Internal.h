@@ -249,7 +249,7 @@ public:
     pqp_detail::view_pointer<Tri, 2> last_tri;
 
     /* Volume n of the hierarchy (&b[n]); NULL before EndModel. */
-    BV *child(int n) const
+    BV *child(int n)
     {
         BV *bvs = b;
         return bvs != NULL ? bvs + n : NULL;
@@ -341,7 +341,7 @@ public:
 
     /* Bytes held by the model (clamped to INT_MAX), including the view of tris and b once read.
      * Never prints, whatever msg is. */
-    int MemUsage(int msg) const
+    int MemUsage(int msg)
     {
         (void)msg;
         uint64_t bytes = pqp_model_memory_usage(pqp_handle_);
@@ -479,9 +479,9 @@ struct PQP_CollideResult
         num_pairs++;
     }
 
-    int NumBVTests() const { return num_bv_tests; }
-    int NumTriTests() const { return num_tri_tests; }
-    double QueryTimeSecs() const { return query_time_secs; }
+    int NumBVTests() { return num_bv_tests; }
+    int NumTriTests() { return num_tri_tests; }
+    double QueryTimeSecs() { return query_time_secs; }
 
     /* Frees the list of colliding pairs (queries otherwise reuse it). */
     void FreePairsList()
@@ -493,12 +493,12 @@ struct PQP_CollideResult
     }
 
     /* 1 if the last query found a colliding triangle pair, else 0. */
-    int Colliding() const { return num_pairs > 0; }
+    int Colliding() { return num_pairs > 0; }
     /* Number of colliding pairs found. */
-    int NumPairs() const { return num_pairs; }
+    int NumPairs() { return num_pairs; }
     /* The ids of pair k (0 <= k < NumPairs(); -1 outside, where PQP 1.3 read out of bounds). */
-    int Id1(int k) const { return k >= 0 && k < num_pairs ? pairs[k].id1 : -1; }
-    int Id2(int k) const { return k >= 0 && k < num_pairs ? pairs[k].id2 : -1; }
+    int Id1(int k) { return k >= 0 && k < num_pairs ? pairs[k].id1 : -1; }
+    int Id2(int k) { return k >= 0 && k < num_pairs ? pairs[k].id2 : -1; }
 
     /* pqp-rs extension: the C handle (for the C functions PQP 1.3 did not have). After a copy it
      * holds no answer: copies carry the members above. */
@@ -600,13 +600,13 @@ struct PQP_DistanceResult
      * results also move. */
     PQP_DistanceResult() { clear(); }
 
-    int NumBVTests() const { return num_bv_tests; }
-    int NumTriTests() const { return num_tri_tests; }
-    double QueryTimeSecs() const { return query_time_secs; }
+    int NumBVTests() { return num_bv_tests; }
+    int NumTriTests() { return num_tri_tests; }
+    double QueryTimeSecs() { return query_time_secs; }
 
-    PQP_REAL Distance() const { return distance; }
-    const PQP_REAL *P1() const { return p1; }
-    const PQP_REAL *P2() const { return p2; }
+    PQP_REAL Distance() { return distance; }
+    const PQP_REAL *P1() { return p1; }
+    const PQP_REAL *P2() { return p2; }
 
     /* pqp-rs extension: the C handle, which also keeps the triangle cache and search front that
      * speed up the next query on the same models. A copy starts with a fresh one. */
@@ -671,14 +671,14 @@ struct PQP_ToleranceResult
     /* Copies carry the members; from C++11 on, results also move. */
     PQP_ToleranceResult() { clear(); }
 
-    int NumBVTests() const { return num_bv_tests; }
-    int NumTriTests() const { return num_tri_tests; }
-    double QueryTimeSecs() const { return query_time_secs; }
+    int NumBVTests() { return num_bv_tests; }
+    int NumTriTests() { return num_tri_tests; }
+    double QueryTimeSecs() { return query_time_secs; }
 
-    int CloserThanTolerance() const { return closer_than_tolerance; }
-    PQP_REAL Distance() const { return distance; }
-    const PQP_REAL *P1() const { return p1; }
-    const PQP_REAL *P2() const { return p2; }
+    int CloserThanTolerance() { return closer_than_tolerance; }
+    PQP_REAL Distance() { return distance; }
+    const PQP_REAL *P1() { return p1; }
+    const PQP_REAL *P2() { return p2; }
 
     /* pqp-rs extension: the C handle. A copy starts with a fresh one. */
     pqp_tolerance_result *pqp_handle() { return handle_.get(); }

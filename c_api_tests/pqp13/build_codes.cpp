@@ -75,6 +75,9 @@ int main()
         EXPECT(m.BeginModel() == PQP_ERR_BUILD_OUT_OF_SEQUENCE);
         EXPECT(m.num_tris == 0 && m.build_state == 1);
     }
+#ifdef PQP_PQP_H
+    // pqp-rs only (PQP_PQP_H is its C header's guard, which its PQP.h includes): PQP 1.3 has no
+    // code for a non-finite vertex; it stores it and later answers queries wrongly.
     {
         // A refused triangle (non-finite vertex) is not added; a fresh model is begun by it, and
         // the model stays usable.
@@ -88,6 +91,7 @@ int main()
         EXPECT(m.num_tris == 1);
         EXPECT(m.EndModel() == PQP_OK && m.num_tris == 1);
     }
+#endif
 
     if (failures != 0) return 1;
     printf("all checks passed\n");

@@ -2,9 +2,10 @@
 // outputs.
 //
 // It is a legacy PQP 1.3 program (C++98, only the installed headers PQP.h, PQP_Compile.h,
-// PQP_Internal.h, Tri.h and BV.h) that uses EVERY public constant, type, data member and function
-// of those headers, on small models whose answers are known by construction (unit boxes at known
-// offsets, a fence of triangles crossed by a rail, two single triangles with one closest pair). It
+// PQP_Internal.h, Tri.h and BV.h, and the MatVec.h and TriDist.h of PQP 1.3's src/) that uses EVERY
+// public constant, type, data member and function of those headers, on small models whose answers
+// are known by construction (unit boxes at known offsets, a fence of triangles crossed by a rail,
+// two single triangles with one closest pair). It
 // prints to stdout, one per line, the answers a correct PQP gives deterministically: constants,
 // build counters, triangle ids and coordinates read back from tris (sorted by id: PQP 1.3 reorders
 // tris, pqp-rs does not), tree sizes, sorted collision pairs, distances (%.9g), unique closest
@@ -14,7 +15,7 @@
 // unspecified (a tolerance result's distance when not closer; qsize when the queue size is 2 or
 // less, which PQP 1.3 does not store). So
 //
-//     g++ every_member.cpp -I<PQP 1.3>/include -L<PQP 1.3>/lib -lPQP && ./a.out > pqp13.txt
+//     g++ every_member.cpp -I<PQP 1.3>/include -I<PQP 1.3>/src -L<PQP 1.3>/lib -lPQP && ./a.out > pqp13.txt
 //     g++ every_member.cpp -I<pqp-rs>/include -L<pqp-rs>/lib -lpqp && ./a.out > pqprs.txt
 //     diff pqp13.txt pqprs.txt
 //
@@ -24,9 +25,14 @@
 // check on stderr, if one is wrong.
 #include "PQP.h"
 #include "PQP_Compile.h"
-#include "PQP_Internal.h"
+// PQP_Internal.h comes through PQP.h: PQP 1.3's PQP_Internal.h has no include guard, so a
+// PQP 1.3 program cannot include it a second time.
 #include "Tri.h"
 #include "BV.h"
+// Not installed by PQP 1.3's Makefile, but used by its demos and by programs that copied them:
+// build against PQP 1.3 with -I<PQP 1.3>/src as well. TriDist() and SegPoints() are in libPQP.a.
+#include "MatVec.h"
+#include "TriDist.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -632,6 +638,146 @@ int main()
         PQP_REAL perpendicular = BV_Distance(Rx, Tx, &b1, &b2);
         printf("BV_Distance: stacked %.9g, perpendicular %.9g\n", stacked, perpendicular);
         EXPECT(near_value(stacked, 1.5) && near_value(perpendicular, 1.5));
+    }
+
+    // ---- MatVec.h and TriDist.h ------------------------------------------------------------
+    // Every helper, on small exact inputs; the printed values are exact in binary or rounded to
+    // 9 digits. Printing helpers (Mprint, Vprint, ...) write to stdout in both.
+    {
+        PQP_REAL A[3][3] = {{1, 2, 3}, {4, 5, 6}, {7, 8, 10}};
+        PQP_REAL B[3][3] = {{2, 0, 1}, {1, 3, 0}, {0, 1, 4}};
+        PQP_REAL u[3] = {1, 2, 3}, v[3] = {-2, 0.5, 4}, w[3], M[3][3], N[3][3];
+        printf("MatVec Mprintg:\n");
+        Mprintg(A);
+        printf("MatVec Mprint:\n");
+        Mprint(B);
+        printf("MatVec Mfprint:\n");
+        fflush(stdout);
+        Mfprint(stdout, A);
+        printf("MatVec Vprintg/Vprint/Vfprint:\n");
+        Vprintg(u);
+        Vprint(v);
+        fflush(stdout);
+        Vfprint(stdout, u);
+        Midentity(M);
+        print_pose("MatVec Midentity/Videntity", M, (Videntity(w), w));
+        McM(M, A);
+        print_pose("MatVec McM", M, u);
+        MTcM(M, A);
+        print_pose("MatVec MTcM", M, u);
+        VcV(w, v);
+        print_vector("MatVec VcV", w);
+        McolcV(w, A, 2);
+        print_vector("MatVec McolcV 2", w);
+        Midentity(M);
+        McolcMcol(M, 0, A, 1);
+        print_pose("MatVec McolcMcol 0<-1", M, u);
+        MxMpV(M, A, B, u);
+        print_pose("MatVec MxMpV", M, u);
+        MxM(M, A, B);
+        print_pose("MatVec MxM", M, u);
+        MxMT(M, A, B);
+        print_pose("MatVec MxMT", M, u);
+        MTxM(M, A, B);
+        print_pose("MatVec MTxM", M, u);
+        MxV(w, A, u);
+        print_vector("MatVec MxV", w);
+        MxVpV(w, A, u, v);
+        print_vector("MatVec MxVpV", w);
+        sMxVpV(w, 2, A, u, v);
+        print_vector("MatVec sMxVpV", w);
+        MTxV(w, A, u);
+        print_vector("MatVec MTxV", w);
+        sMTxV(w, 0.5, A, u);
+        print_vector("MatVec sMTxV", w);
+        sMxV(w, -1, A, u);
+        print_vector("MatVec sMxV", w);
+        VmV(w, u, v);
+        print_vector("MatVec VmV", w);
+        VpV(w, u, v);
+        print_vector("MatVec VpV", w);
+        VpVxS(w, u, v, 0.25);
+        print_vector("MatVec VpVxS", w);
+        MskewV(M, u);
+        print_pose("MatVec MskewV", M, u);
+        VcrossV(w, u, v);
+        print_vector("MatVec VcrossV", w);
+        PQP_REAL len3[3] = {3, 4, 12};
+        printf("MatVec Vlength %.9g VdotV %.9g VdistV2 %.9g\n", Vlength(len3), VdotV(u, v),
+               VdistV2(u, v));
+        Vnormalize(len3);
+        print_vector("MatVec Vnormalize", len3);
+        VxS(w, v, -2);
+        print_vector("MatVec VxS", w);
+        const PQP_REAL x = -2.5;
+        printf("MatVec myfabs %.9g M_PI %.9g QX %d QY %d QZ %d QW %d\n", myfabs(x), (double)M_PI,
+               QX, QY, QZ, QW);
+        MRotZ(M, (PQP_REAL)(M_PI / 2));
+        print_pose("MatVec MRotZ pi/2", M, u);
+        MRotX(M, (PQP_REAL)(M_PI / 2));
+        print_pose("MatVec MRotX pi/2", M, u);
+        MRotY(M, (PQP_REAL)(M_PI / 2));
+        print_pose("MatVec MRotY pi/2", M, u);
+        double ogl[16];
+        MVtoOGL(ogl, A, u);
+        printf("MatVec MVtoOGL");
+        for (int k = 0; k < 16; k++) printf(" %g", ogl[k]);
+        printf("\n");
+        PQP_REAL T[3];
+        OGLtoMV(M, T, ogl);
+        print_pose("MatVec OGLtoMV", M, T);
+        // The quaternion (x, y, z, w) of a half turn about z, and a quarter turn about x
+        // (unnormalized: MRotQ scales by 2 / |q|^2).
+        PQP_REAL q1[4] = {0, 0, 1, 0}, q2[4] = {1, 0, 0, 1};
+        MRotQ(M, q1);
+        print_pose("MatVec MRotQ z half turn", M, u);
+        MRotQ(M, q2);
+        print_pose("MatVec MRotQ x quarter turn", M, u);
+        // Mqinverse of a rotation is its inverse, the transpose.
+        PQP_REAL Rq[3][3];
+        MRotZ(Rq, (PQP_REAL)0.5);
+        MxM(N, Rq, Rq);
+        Mqinverse(M, N);
+        MxM(Rq, M, N);
+        print_pose("MatVec Mqinverse(R) * R", Rq, u);
+        // Meigen of a symmetric matrix with eigenvalues 1, 2, 4: check A v = lambda v; print
+        // the sorted eigenvalues (the order and signs of the eigenvectors are unspecified).
+        PQP_REAL S[3][3] = {{1, 0, 0}, {0, 3, 1}, {0, 1, 3}}, S0[3][3], E[3][3], ev[3];
+        McM(S0, S);
+        Meigen(E, ev, S);
+        double worst = 0;
+        for (int c = 0; c < 3; c++)
+            for (int r = 0; r < 3; r++) {
+                double sv = S0[r][0] * E[0][c] + S0[r][1] * E[1][c] + S0[r][2] * E[2][c];
+                worst = std::max(worst, fabs(sv - ev[c] * E[r][c]));
+            }
+        std::sort(ev, ev + 3);
+        printf("MatVec Meigen eigenvalues %.9g %.9g %.9g, A v = lambda v %d\n", ev[0], ev[1],
+               ev[2], worst < 1e-9 ? 1 : 0);
+        EXPECT(near_value(ev[0], 1) && near_value(ev[1], 2) && near_value(ev[2], 4));
+        EXPECT(worst < 1e-9);
+
+        // TriDist: two triangles with one closest pair, 1 apart along z.
+        PQP_REAL s[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+        PQP_REAL t[3][3] = {{0.25, 0.25, 1}, {2, 2, 3}, {2, -1, 3}};
+        PQP_REAL p[3], qq[3];
+        PQP_REAL d = TriDist(p, qq, s, t);
+        printf("TriDist %.9g\n", d);
+        print_vector("TriDist p", p);
+        print_vector("TriDist q", qq);
+        EXPECT(near_value(d, 1));
+        // SegPoints: the segments x in [0,1] at y = z = 0 and y in [-1,1] at x = 0.5, z = 2.
+        PQP_REAL P0[3] = {0, 0, 0}, A0[3] = {1, 0, 0}, Q0[3] = {0.5, -1, 2}, B0[3] = {0, 2, 0};
+        PQP_REAL VEC[3], X[3], Y[3];
+        SegPoints(VEC, X, Y, P0, A0, Q0, B0);
+        print_vector("SegPoints X", X);
+        print_vector("SegPoints Y", Y);
+        EXPECT(near_value(X[0], 0.5) && near_value(Y[2], 2) && near_value(VdistV2(X, Y), 4));
+        // VEC is a direction from the first segment towards the second (PQP 1.3 does not
+        // normalize it): print its direction only.
+        PQP_REAL vl = Vlength(VEC);
+        PQP_REAL dir[3] = {VEC[0] / vl, VEC[1] / vl, VEC[2] / vl};
+        print_vector("SegPoints VEC direction", dir);
     }
 
     delete a;  // the destructor

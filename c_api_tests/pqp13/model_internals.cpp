@@ -169,6 +169,19 @@ static LD model_scale(const std::vector<Tri> &input)
     return s;
 }
 
+#ifndef PQP_PQP_H
+static bool id_less(const Tri *a, const Tri *b) { return a->id < b->id; }
+
+// Pointers to n triangles, sorted by id.
+static std::vector<const Tri *> by_id(const Tri *t, int n)
+{
+    std::vector<const Tri *> out(n);
+    for (int k = 0; k < n; k++) out[k] = &t[k];
+    std::stable_sort(out.begin(), out.end(), id_less);
+    return out;
+}
+#endif
+
 static void check_built_model(PQP_Model &m, const std::vector<Tri> &input, const char *name)
 {
     snprintf(context, sizeof context, "%s (%zu triangles)", name, input.size());
@@ -188,11 +201,19 @@ static void check_built_model(PQP_Model &m, const std::vector<Tri> &input, const
     if (tris == NULL) return;
     EXPECT(static_cast<Tri *>(m.tris) == tris);
     EXPECT(static_cast<Tri *>(m.last_tri) == tris);
+#ifdef PQP_PQP_H
+    // pqp-rs (PQP_PQP_H, its C header's guard, is defined by its PQP.h) keeps the order added.
+    std::vector<const Tri *> got(n), want(n);
+    for (int k = 0; k < n; k++) got[k] = &tris[k], want[k] = &input[k];
+#else
+    // PQP 1.3 reorders tris while it builds: compare as sets, in the order of (distinct) ids.
+    std::vector<const Tri *> got = by_id(tris, n), want = by_id(&input[0], n);
+#endif
     for (int k = 0; k < n && k < m.num_tris; k++) {
-        EXPECT(tris[k].id == input[k].id);
-        EXPECT(memcmp(tris[k].p1, input[k].p1, sizeof tris[k].p1) == 0);
-        EXPECT(memcmp(tris[k].p2, input[k].p2, sizeof tris[k].p2) == 0);
-        EXPECT(memcmp(tris[k].p3, input[k].p3, sizeof tris[k].p3) == 0);
+        EXPECT(got[k]->id == want[k]->id);
+        EXPECT(memcmp(got[k]->p1, want[k]->p1, sizeof got[k]->p1) == 0);
+        EXPECT(memcmp(got[k]->p2, want[k]->p2, sizeof got[k]->p2) == 0);
+        EXPECT(memcmp(got[k]->p3, want[k]->p3, sizeof got[k]->p3) == 0);
     }
 
     // b and child(k) == &b[k].
@@ -208,7 +229,7 @@ static void check_built_model(PQP_Model &m, const std::vector<Tri> &input, const
     int leaves = 0;
     bool layout_ok = true;
     for (int k = 0; k < nb; k++) {
-        const BV &v = b[k];
+        BV &v = b[k];  // not const: PQP 1.3's Leaf() and GetSize() are not const members
         EXPECT(v.Leaf() == (v.first_child < 0 ? 1 : 0));
         if (v.first_child < 0) {
             leaves++;
@@ -282,7 +303,8 @@ static void check_built_model(PQP_Model &m, const std::vector<Tri> &input, const
     const LD tol = 1e-9L * model_scale(input);
     int rss_misses = 0, obb_misses = 0, bad_volume = -1, bad_triangle = -1;
     for (int t = 0; t < n; t++) {
-        LV vs[3] = {lv(input[t].p1), lv(input[t].p2), lv(input[t].p3)};
+        // The leaf indexes the model's tris (the order added in pqp-rs, PQP 1.3's own order).
+        LV vs[3] = {lv(tris[t].p1), lv(tris[t].p2), lv(tris[t].p3)};
         for (int k = leaf_of[t]; k != -1; k = parent[k])
             for (int i = 0; i < 3; i++) {
                 bool in_rss = rss_contains(abs[k], b[k], vs[i], tol);
@@ -358,7 +380,7 @@ static uint64_t fnv(uint64_t h, const void *data, size_t bytes)
     return h;
 }
 
-static Seen read_view(const PQP_Model &m)
+static Seen read_view(PQP_Model &m)  // not const: PQP 1.3's child() is not a const member
 {
     Seen s;
     s.tris = m.tris;

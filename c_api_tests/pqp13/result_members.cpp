@@ -23,7 +23,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <chrono>
 #include <limits>
 #include <map>
 #include <random>
@@ -291,6 +290,18 @@ static void check_relative_pose(const PQP_REAL R[3][3], const PQP_REAL T[3], con
     }
 }
 
+// The queue size echoed in the result: PQP 1.3 stores qsize only when it is above 2 (its queue
+// search); pqp-rs always stores it (PQP_PQP_H, its C header's guard, is defined by its PQP.h).
+static void check_qsize(int stored, int qsize, bool default_qsize)
+{
+    const int asked = default_qsize ? 2 : qsize;
+#ifdef PQP_PQP_H
+    EXPECT(stored == asked);
+#else
+    if (asked > 2) EXPECT(stored == asked);
+#endif
+}
+
 // p1 on model 1 (its frame), p2 on model 2 (its frame), and their world images `distance` apart.
 static void check_points(const PQP_REAL p1[3], const PQP_REAL p2[3], PQP_REAL distance,
                          const Case &c)
@@ -373,7 +384,7 @@ static void check_distance(PQP_DistanceResult &res, Case &c, PQP_REAL rel, PQP_R
     check_relative_pose(res.R, res.T, c);
     // The arguments, echoed (qsize 2 is the default).
     EXPECT(res.rel_err == rel && res.abs_err == abs);
-    EXPECT(res.qsize == (default_qsize ? 2 : qsize));
+    check_qsize(res.qsize, qsize, default_qsize);
     // Accessors.
     EXPECT(res.Distance() == res.distance);
     EXPECT(res.P1() == res.p1 && res.P2() == res.p2);
@@ -407,7 +418,7 @@ static void check_tolerance(PQP_ToleranceResult &res, Case &c, PQP_REAL toleranc
     check_stats(res);
     check_relative_pose(res.R, res.T, c);
     EXPECT(res.tolerance == tolerance);
-    EXPECT(res.qsize == (default_qsize ? 2 : qsize));
+    check_qsize(res.qsize, qsize, default_qsize);
     EXPECT(res.CloserThanTolerance() == res.closer_than_tolerance);
     EXPECT(res.Distance() == res.distance);
     EXPECT(res.P1() == res.p1 && res.P2() == res.p2);
@@ -424,9 +435,12 @@ static void check_tolerance(PQP_ToleranceResult &res, Case &c, PQP_REAL toleranc
         EXPECT(res.distance >= truth - slack);
         check_points(res.p1, res.p2, res.distance, c);
     } else {
-        // pqp-rs documents a lower bound on the distance, above the tolerance.
+#ifdef PQP_PQP_H
+        // pqp-rs documents a lower bound on the distance, above the tolerance (PQP 1.3 leaves the
+        // distance unspecified when not closer).
         EXPECT(res.distance > tolerance);
         EXPECT(res.distance <= truth + slack);
+#endif
     }
 }
 
@@ -482,6 +496,9 @@ static bool same_tolerance(const PQP_ToleranceResult &a, const PQP_ToleranceResu
            SAME_MEMBER(a, b, qsize);
 }
 
+// The codes for NaN poses, negative bounds, qsize 0 and unknown flags are pqp-rs's (PQP_PQP_H, its
+// C header's guard, is defined by its PQP.h): PQP 1.3 has none and runs such queries, so they are
+// checked against pqp-rs only, and the program also builds against PQP 1.3.
 static void check_failing_queries(Case &c, PQP_Model *unbuilt)
 {
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -496,6 +513,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
     PQP_CollideResult cres;
     EXPECT(PQP_Collide(&cres, p1.R, p1.T, c.model1, p2.R, p2.T, c.model2) == PQP_OK);
     CollideSnapshot before(cres);
+#ifdef PQP_PQP_H
     EXPECT(PQP_Collide(&cres, p1.R, p1.T, c.model1, bad_T.R, bad_T.T, c.model2) ==
            PQP_ERR_NONFINITE_POSE);
     EXPECT(before.same(cres));
@@ -505,6 +523,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
     EXPECT(PQP_Collide(&cres, p1.R, p1.T, c.model1, p2.R, p2.T, c.model2, 7) ==
            PQP_ERR_INVALID_ARGUMENT);
     EXPECT(before.same(cres));
+#endif
     EXPECT(PQP_Collide(&cres, p1.R, p1.T, c.model1, p2.R, p2.T, unbuilt) ==
            PQP_ERR_UNPROCESSED_MODEL);
     EXPECT(before.same(cres));
@@ -516,6 +535,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
            PQP_OK);
     const PQP_DistanceResult dkept = dres;  // a copy of the members (copies are deep)
     EXPECT(same_distance(dkept, dres));
+#ifdef PQP_PQP_H
     EXPECT(PQP_Distance(&dres, p1.R, p1.T, c.model1, p2.R, p2.T, c.model2, -1, 0) ==
            PQP_ERR_INVALID_ARGUMENT);
     EXPECT(same_distance(dkept, dres));
@@ -534,6 +554,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
     EXPECT(PQP_Distance(&dres, bad_R.R, bad_R.T, c.model1, p2.R, p2.T, c.model2, 0, 0) ==
            PQP_ERR_NONFINITE_POSE);
     EXPECT(same_distance(dkept, dres));
+#endif
     EXPECT(PQP_Distance(&dres, p1.R, p1.T, unbuilt, p2.R, p2.T, c.model2, 0, 0) ==
            PQP_ERR_UNPROCESSED_MODEL);
     EXPECT(same_distance(dkept, dres));
@@ -544,6 +565,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
     EXPECT(PQP_Tolerance(&tres, p1.R, p1.T, c.model1, p2.R, p2.T, c.model2, 0.5, 4) == PQP_OK);
     const PQP_ToleranceResult tkept = tres;
     EXPECT(same_tolerance(tkept, tres));
+#ifdef PQP_PQP_H
     EXPECT(PQP_Tolerance(&tres, p1.R, p1.T, c.model1, p2.R, p2.T, c.model2, -1) ==
            PQP_ERR_INVALID_ARGUMENT);
     EXPECT(same_tolerance(tkept, tres));
@@ -556,6 +578,7 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
     EXPECT(PQP_Tolerance(&tres, p1.R, p1.T, c.model1, bad_T.R, bad_T.T, c.model2, 0.5) ==
            PQP_ERR_NONFINITE_POSE);
     EXPECT(same_tolerance(tkept, tres));
+#endif
     EXPECT(PQP_Tolerance(&tres, p1.R, p1.T, unbuilt, p2.R, p2.T, c.model2, 0.5) ==
            PQP_ERR_UNPROCESSED_MODEL);
     EXPECT(same_tolerance(tkept, tres));
@@ -566,7 +589,6 @@ static void check_failing_queries(Case &c, PQP_Model *unbuilt)
 
 int main()
 {
-    const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     std::mt19937_64 rng(20240611);
     Mesh sphere = perturbed_sphere(8, 16, rng);  // 224 triangles
     Mesh torus = perturbed_torus(16, 7, rng);    // 224 triangles
@@ -675,12 +697,12 @@ int main()
         }
     }
 
-    const double secs =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // No time is printed: the output is diffed against PQP 1.3's (c_api_tests/README.md).
+    // Nor the number of failing queries, most of which are pqp-rs's (check_failing_queries).
     printf("result_members: %d poses (%d colliding, %d within 0.1, %d farther), %d collide, %d "
-           "distance, %d tolerance and %d failing queries checked in %.1f s\n",
-           kPoses, colliding, within, farther, collide_queries, distance_queries, tolerance_queries,
-           error_queries, secs);
+           "distance and %d tolerance queries checked\n",
+           kPoses, colliding, within, farther, collide_queries, distance_queries, tolerance_queries);
+    EXPECT(error_queries > 0);
     if (failures) {
         fprintf(stderr, "result_members: %d check(s) failed\n", failures);
         return 1;
