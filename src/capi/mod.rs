@@ -26,6 +26,8 @@
 
 // In the order the header lists them (cbindgen follows the module order).
 mod model;
+// Refit: moving a built model's triangles.
+mod refit;
 // PQP 1.3's view of a model and its volumes' functions.
 mod legacy;
 // Collision.
@@ -48,6 +50,7 @@ pub use geometry::*;
 pub use legacy::*;
 pub use misc::*;
 pub use model::*;
+pub use refit::*;
 pub use tolerance::*;
 
 use crate::error::Error;

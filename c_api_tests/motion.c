@@ -1,0 +1,165 @@
+/* Moving and deforming models through the C ABI: pqp_model_refit (answers after a refit, PQP
+ * 1.3's view refreshed, every bad argument's code with the model unchanged) and
+ * pqp_self_collide (answers known by construction, adjacency, bad arguments). */
+#include <pqp/pqp.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+
+static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+static const double ZERO3[3] = {0, 0, 0};
+
+#define N 10 /* grid cells per side */
+#define NT (2 * N * N)
+
+/* The sheet's vertex (i, j) at height z(i, j) = lift * x * x (x in [-1, 1]). */
+static void sheet_vertex(int i, int j, double lift, double out[3])
+{
+    double x = 2.0 * i / N - 1.0, y = 2.0 * j / N - 1.0;
+    out[0] = x;
+    out[1] = y;
+    out[2] = lift * x * x;
+}
+
+/* The sheet's triangles at `lift`, 9 doubles each, in the order pqp_model_add_tri got them. */
+static void sheet_coords(double lift, double *c)
+{
+    int i, j, k = 0;
+    for (i = 0; i < N; i++) {
+        for (j = 0; j < N; j++) {
+            sheet_vertex(i, j, lift, c + 9 * k);
+            sheet_vertex(i + 1, j, lift, c + 9 * k + 3);
+            sheet_vertex(i + 1, j + 1, lift, c + 9 * k + 6);
+            k++;
+            sheet_vertex(i, j, lift, c + 9 * k);
+            sheet_vertex(i + 1, j + 1, lift, c + 9 * k + 3);
+            sheet_vertex(i, j + 1, lift, c + 9 * k + 6);
+            k++;
+        }
+    }
+}
+
+static pqp_model *model_of(const double *c, int n)
+{
+    pqp_model *m = pqp_model_create();
+    int k;
+    CHECK(m != NULL);
+    CHECK_EQ(pqp_model_begin(m, n), PQP_OK);
+    for (k = 0; k < n; k++) CHECK_EQ(pqp_model_add_tri(m, c + 9 * k, c + 9 * k + 3, c + 9 * k + 6, 100 + k), PQP_OK);
+    CHECK_EQ(pqp_model_end(m), PQP_OK);
+    return m;
+}
+
+/* Distance from a tiny triangle at (0, 0, h) to the sheet: the sheet's lowest point under it is
+ * its centre line x = 0, at height 0 whatever the lift, so the distance is h. At (0.5, 0, h) the
+ * sheet is at lift / 4 there; the distance is at most h - lift / 4. */
+static void refit_answers(void)
+{
+    static double c[9 * NT];
+    double probe[9] = {-0.01, -0.01, 0.5, 0.01, -0.01, 0.5, 0.0, 0.01, 0.5};
+    double T[3] = {0.5, 0.0, 0.0};
+    pqp_model *sheet, *p, *rebuilt;
+    pqp_distance_result *d = pqp_distance_result_create();
+    pqp_collide_result *r = pqp_collide_result_create();
+    const pqp_tri *tris;
+    const pqp_bv *bvs;
+    int nt, nb, step, k, nr;
+    sheet_coords(0.0, c);
+    sheet = model_of(c, NT);
+    p = model_of(probe, 1);
+    /* The views are made before the refit, and must be made afresh after it. */
+    CHECK_EQ(pqp_model_tris(sheet, &tris, &nt), PQP_OK);
+    CHECK_EQ(pqp_model_bvs(sheet, &bvs, &nb), PQP_OK);
+    for (step = 1; step <= 4; step++) {
+        double lift = 0.5 * step;
+        sheet_coords(lift, c);
+        CHECK_EQ(pqp_model_refit(sheet, c, NT), PQP_OK);
+        CHECK_EQ(pqp_model_num_tris(sheet), NT);
+        rebuilt = model_of(c, NT);
+        for (k = 0; k < 8; k++) {
+            double dr, db;
+            T[0] = 0.15 * k - 0.3;
+            CHECK_EQ(pqp_distance(d, I3, ZERO3, sheet, I3, T, p, 0.0, 0.0, 2), PQP_OK);
+            dr = pqp_distance_result_distance(d);
+            CHECK_EQ(pqp_distance(d, I3, ZERO3, rebuilt, I3, T, p, 0.0, 0.0, 2), PQP_OK);
+            db = pqp_distance_result_distance(d);
+            CHECK_NEAR(dr, db, 1e-12);
+            /* The sheet's height under the probe is about lift * x^2, never below it. */
+            CHECK(dr <= 0.5 - lift * T[0] * T[0] + 1e-12 || lift * T[0] * T[0] >= 0.5);
+            CHECK_EQ(pqp_collide(r, I3, ZERO3, sheet, I3, T, p, PQP_ALL_CONTACTS), PQP_OK);
+            nr = pqp_collide_result_num_pairs(r);
+            CHECK_EQ(pqp_collide(r, I3, ZERO3, rebuilt, I3, T, p, PQP_ALL_CONTACTS), PQP_OK);
+            CHECK_EQ(nr, pqp_collide_result_num_pairs(r));
+            CHECK_EQ(nr > 0, dr == 0.0);
+        }
+        pqp_model_destroy(rebuilt);
+        CHECK_EQ(pqp_model_tris(sheet, &tris, &nt), PQP_OK);
+        CHECK_EQ(nt, NT);
+        CHECK(memcmp(tris[NT - 1].p3, c + 9 * (NT - 1) + 6, sizeof(double[3])) == 0);
+        CHECK_EQ(tris[7].id, 107);
+        CHECK_EQ(pqp_model_bvs(sheet, &bvs, &nb), PQP_OK);
+        CHECK_EQ(nb, 2 * NT - 1);
+        /* The root's box reaches the sheet's highest point, lift, along some axis. */
+        CHECK(bvs[0].d[0] + bvs[0].d[1] + bvs[0].d[2] >= lift / 2);
+    }
+    pqp_collide_result_destroy(r);
+    pqp_distance_result_destroy(d);
+    pqp_model_destroy(p);
+    pqp_model_destroy(sheet);
+}
+
+static void refit_errors(void)
+{
+    static double c[9 * NT], moved[9 * NT];
+    pqp_model *m, *fresh = pqp_model_create();
+    pqp_distance_result *d = pqp_distance_result_create();
+    double probe[9] = {0, 0, 1, 0.1, 0, 1, 0, 0.1, 1};
+    pqp_model *p = model_of(probe, 1);
+    const pqp_tri *tris;
+    int nt;
+    double before;
+    sheet_coords(0.25, c);
+    m = model_of(c, NT);
+    CHECK_EQ(pqp_distance(d, I3, ZERO3, m, I3, ZERO3, p, 0.0, 0.0, 2), PQP_OK);
+    before = pqp_distance_result_distance(d);
+    sheet_coords(1.5, moved);
+    CHECK_EQ(pqp_model_refit(NULL, moved, NT), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_model_refit(m, NULL, NT), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_model_refit(m, moved, NT - 1), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_model_refit(m, moved, NT + 1), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_model_refit(m, moved, (size_t)-1), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_model_refit(m, moved, 0), PQP_ERR_INVALID_ARGUMENT);
+    moved[9 * NT - 1] = NAN;
+    CHECK_EQ(pqp_model_refit(m, moved, NT), PQP_ERR_NONFINITE_COORDINATE);
+    moved[9 * NT - 1] = INFINITY;
+    CHECK_EQ(pqp_model_refit(m, moved, NT), PQP_ERR_NONFINITE_COORDINATE);
+    moved[9 * NT - 1] = 2e150;
+    CHECK_EQ(pqp_model_refit(m, moved, NT), PQP_ERR_NONFINITE_COORDINATE);
+    /* Unchanged: the same distance and the same triangles. */
+    CHECK_EQ(pqp_distance(d, I3, ZERO3, m, I3, ZERO3, p, 0.0, 0.0, 2), PQP_OK);
+    CHECK(pqp_distance_result_distance(d) == before);
+    CHECK_EQ(pqp_model_tris(m, &tris, &nt), PQP_OK);
+    CHECK(tris[NT - 1].p3[2] == c[9 * NT - 1]);
+    /* Unbuilt models: fresh, begun, and given triangles but not ended. */
+    CHECK_EQ(pqp_model_refit(fresh, moved, 0), PQP_ERR_UNPROCESSED_MODEL);
+    CHECK_EQ(pqp_model_refit(fresh, moved, 1), PQP_ERR_UNPROCESSED_MODEL);
+    CHECK_EQ(pqp_model_begin(fresh, 1), PQP_OK);
+    CHECK_EQ(pqp_model_add_tri(fresh, probe, probe + 3, probe + 6, 0), PQP_OK);
+    CHECK_EQ(pqp_model_refit(fresh, probe, 1), PQP_ERR_UNPROCESSED_MODEL);
+    CHECK_EQ(pqp_model_end(fresh), PQP_OK);
+    CHECK_EQ(pqp_model_refit(fresh, probe, 1), PQP_OK);
+    pqp_model_destroy(fresh);
+    pqp_model_destroy(p);
+    pqp_model_destroy(m);
+    pqp_distance_result_destroy(d);
+}
+
+int main(void)
+{
+    refit_answers();
+    refit_errors();
+    CHECK_DONE("motion");
+}
