@@ -157,9 +157,64 @@ static void refit_errors(void)
     pqp_distance_result_destroy(d);
 }
 
+/* Self-collision: a closed box (no pair), the box with a triangle folded onto its neighbour and
+ * a duplicate (their pairs, the earlier added triangle first), and the error codes. */
+static void self_collision(void)
+{
+    static const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                   {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    static const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                 {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    double c[9 * 14];
+    int k, i;
+    pqp_model *box, *bad, *fresh = pqp_model_create();
+    pqp_collide_result *r = pqp_collide_result_create();
+    for (k = 0; k < 12; k++)
+        for (i = 0; i < 3; i++) memcpy(c + 9 * k + 3 * i, v[f[k][i]], sizeof(double[3]));
+    box = model_of(c, 12);
+    CHECK_EQ(pqp_self_collide(r, box, PQP_ALL_CONTACTS), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 0);
+    /* Triangle 1 (0 3 2) folded onto triangle 0 (0 2 1) across their edge 0 2: its vertex 3
+     * moved to (0.75, 0.25, 0), on 0's side. Triangle 13 duplicates triangle 4. */
+    memcpy(c + 9 * 12, c + 9 * 1, sizeof(double[9]));
+    c[9 * 12 + 3] = 0.75;
+    c[9 * 12 + 4] = 0.25;
+    memcpy(c + 9 * 13, c + 9 * 4, sizeof(double[9]));
+    bad = model_of(c, 14);
+    CHECK_EQ(pqp_self_collide(r, bad, PQP_ALL_CONTACTS), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 2);
+    for (k = 0; k < pqp_collide_result_num_pairs(r); k++) {
+        int a = pqp_collide_result_id1(r, k), b = pqp_collide_result_id2(r, k);
+        CHECK((a == 100 && b == 112) || (a == 104 && b == 113));
+    }
+    CHECK_EQ(pqp_self_collide(r, bad, PQP_FIRST_CONTACT), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 1);
+    /* Errors leave r as it was. */
+    CHECK_EQ(pqp_self_collide(NULL, bad, PQP_ALL_CONTACTS), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_self_collide(r, NULL, PQP_ALL_CONTACTS), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_self_collide(r, bad, 0), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_self_collide(r, bad, 3), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_self_collide(r, fresh, PQP_ALL_CONTACTS), PQP_ERR_UNPROCESSED_MODEL);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 1);
+    /* After a refit that unfolds and moves the duplicate away: nothing. */
+    memcpy(c + 9 * 12, c + 9 * 1, sizeof(double[9]));
+    for (k = 0; k < 9; k++) c[9 * 13 + k] += 5.0;
+    CHECK_EQ(pqp_model_refit(bad, c, 14), PQP_OK);
+    CHECK_EQ(pqp_self_collide(r, bad, PQP_ALL_CONTACTS), PQP_OK);
+    /* Triangle 12 is now triangle 1 again: identical triangles are reported. */
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 1);
+    CHECK_EQ(pqp_collide_result_id1(r, 0), 101);
+    CHECK_EQ(pqp_collide_result_id2(r, 0), 112);
+    pqp_collide_result_destroy(r);
+    pqp_model_destroy(fresh);
+    pqp_model_destroy(bad);
+    pqp_model_destroy(box);
+}
+
 int main(void)
 {
     refit_answers();
     refit_errors();
+    self_collision();
     CHECK_DONE("motion");
 }

@@ -32,6 +32,8 @@ mod refit;
 mod legacy;
 // Collision.
 mod collide;
+// Self-collision.
+mod self_collide;
 // Separation distance.
 mod distance;
 // Tolerance.
@@ -51,6 +53,7 @@ pub use legacy::*;
 pub use misc::*;
 pub use model::*;
 pub use refit::*;
+pub use self_collide::*;
 pub use tolerance::*;
 
 use crate::error::Error;

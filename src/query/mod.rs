@@ -13,12 +13,14 @@ mod front;
 mod layering_tests;
 mod queue;
 pub(crate) mod search;
+mod self_collide;
 mod strategy;
 mod tolerance;
 mod traversal;
 
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
+pub use self_collide::{self_collide, self_collide_into, self_contact};
 pub use strategy::{Search, Strategy};
 pub use tolerance::{ToleranceResult, tolerance, tolerance_into};
 
