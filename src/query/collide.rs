@@ -182,6 +182,30 @@ fn search<V: OverlapVolume>(
             }
             continue;
         }
+        // Against itself, a triangle against a node of two triangles goes straight to the two
+        // triangle tests: in a mesh such pairs are mostly neighbours, whose volumes overlap and
+        // whose test is cheaper than the volumes'.
+        if same && (p.a.is_leaf() || p.b.is_leaf()) {
+            let (leaf, node) = if p.a.is_leaf() {
+                (p.a, p.b)
+            } else {
+                (p.b, p.a)
+            };
+            let [c0, c1] = b1.children(node);
+            if c0.is_leaf() && c1.is_leaf() {
+                stack.push(NodePair {
+                    a: leaf,
+                    b: c1,
+                    ..p
+                });
+                stack.push(NodePair {
+                    a: leaf,
+                    b: c0,
+                    ..p
+                });
+                continue;
+            }
+        }
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
         if p.a.is_leaf() || p.b.is_leaf() {
             let direct = if p.b.is_leaf() {

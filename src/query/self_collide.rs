@@ -148,16 +148,39 @@ fn unshared_part_meets(
     match n {
         0 => false,
         1 => {
-            if let Some((p, q)) = edge {
-                if on_segment(&rest[0], &p, &q) {
-                    return false;
-                }
+            if let Some((p, q)) = edge
+                && on_segment(&rest[0], &p, &q)
+            {
+                return false;
             }
             tri_overlap(other, &[rest[0]; 3])
         }
-        2 => tri_overlap(other, &[rest[0], rest[1], rest[1]]),
+        2 => segment_meets(&rest[0], &rest[1], other),
         _ => tri_overlap(other, t),
     }
+}
+
+/// Whether the segment `s0 s1` meets the triangle `t` (exactly, as [`tri_overlap`] of the
+/// segment taken as a triangle, which this settles with orientation signs only: a segment across
+/// the plane of `t` meets `t` when the line turns the same way around each of its edges). Faster
+/// than [`tri_overlap`] on a segment, whose own plane it cannot use; neighbours in a fine mesh
+/// are nearly coplanar, and the segments opposite a shared vertex are the common case.
+fn segment_meets(s0: &Vec3, s1: &Vec3, t: &Tri) -> bool {
+    let o0 = orient3d(&t[0], &t[1], &t[2], s0);
+    let o1 = orient3d(&t[0], &t[1], &t[2], s1);
+    if (o0 > 0.0 && o1 > 0.0) || (o0 < 0.0 && o1 < 0.0) {
+        return false;
+    }
+    if o0 == 0.0 && o1 == 0.0 {
+        // In the plane of t, or t has none (degenerate).
+        return tri_overlap(t, &[*s0, *s1, *s1]);
+    }
+    let e = [
+        orient3d(s0, s1, &t[0], &t[1]),
+        orient3d(s0, s1, &t[1], &t[2]),
+        orient3d(s0, s1, &t[2], &t[0]),
+    ];
+    !(e.iter().any(|&x| x > 0.0) && e.iter().any(|&x| x < 0.0))
 }
 
 /// Whether `x` lies on the segment `p q` (exactly: collinear, and between in every coordinate).
