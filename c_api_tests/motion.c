@@ -1,6 +1,7 @@
 /* Moving and deforming models through the C ABI: pqp_model_refit (answers after a refit, PQP
  * 1.3's view refreshed, every bad argument's code with the model unchanged) and
- * pqp_self_collide (answers known by construction, adjacency, bad arguments). */
+ * pqp_self_collide (answers known by construction, adjacency, bad arguments), and
+ * pqp_within_distance (pairs of two parallel sheets at known distances, bad arguments). */
 #include <pqp/pqp.h>
 
 #include <math.h>
@@ -211,10 +212,64 @@ static void self_collision(void)
     pqp_model_destroy(box);
 }
 
+/* Two copies of the flat sheet, the second lifted by 0.3 and shifted by half a cell along x:
+ * every pair is at least 0.3 apart, and a triangle's pairs within 0.3 + s grow with s. */
+static void within_distance(void)
+{
+    static double c[9 * NT];
+    double T[3] = {0.1, 0.0, 0.3}, nan = NAN;
+    pqp_model *a, *b, *fresh = pqp_model_create();
+    pqp_collide_result *r = pqp_collide_result_create();
+    int n0, n1, n2, k;
+    sheet_coords(0.0, c);
+    a = model_of(c, NT);
+    b = model_of(c, NT);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.0), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 0);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.2999), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), 0);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.3), PQP_OK);
+    n0 = pqp_collide_result_num_pairs(r);
+    CHECK(n0 > 0);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.35), PQP_OK);
+    n1 = pqp_collide_result_num_pairs(r);
+    CHECK(n1 > n0);
+    for (k = 0; k < n1; k++) {
+        CHECK(pqp_collide_result_id1(r, k) >= 100 && pqp_collide_result_id1(r, k) < 100 + NT);
+        CHECK(pqp_collide_result_id2(r, k) >= 100 && pqp_collide_result_id2(r, k) < 100 + NT);
+    }
+    /* Every pair, at an infinite tolerance. */
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, INFINITY), PQP_OK);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), NT * NT);
+    /* Tolerance 0 gives the pairs of pqp_collide. */
+    T[2] = 0.0;
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.0), PQP_OK);
+    n2 = pqp_collide_result_num_pairs(r);
+    CHECK_EQ(pqp_collide(r, I3, ZERO3, a, I3, T, b, PQP_ALL_CONTACTS), PQP_OK);
+    CHECK_EQ(n2, pqp_collide_result_num_pairs(r));
+    CHECK(n2 > 0);
+    /* Errors leave r as it was. */
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, -1e-9), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, nan), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, fresh, 0.1), PQP_ERR_UNPROCESSED_MODEL);
+    CHECK_EQ(pqp_within_distance(NULL, I3, ZERO3, a, I3, T, b, 0.1), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_within_distance(r, NULL, ZERO3, a, I3, T, b, 0.1), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, NULL, b, 0.1), PQP_ERR_NULL_POINTER);
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, NULL, I3, T, b, 0.1), PQP_ERR_NULL_POINTER);
+    T[0] = nan;
+    CHECK_EQ(pqp_within_distance(r, I3, ZERO3, a, I3, T, b, 0.1), PQP_ERR_NONFINITE_POSE);
+    CHECK_EQ(pqp_collide_result_num_pairs(r), n2);
+    pqp_collide_result_destroy(r);
+    pqp_model_destroy(fresh);
+    pqp_model_destroy(b);
+    pqp_model_destroy(a);
+}
+
 int main(void)
 {
     refit_answers();
     refit_errors();
     self_collision();
+    within_distance();
     CHECK_DONE("motion");
 }

@@ -10,7 +10,10 @@
 //! against the collision query of the model with itself, and on a closed torus of a million
 //! triangles.
 //!
-//! `cargo run --release --example motion` (`-- --quick` for smaller meshes)
+//! Pairs within a distance: `within_distance` against brute force over all pairs.
+//!
+//! `cargo run --release --example motion` (`-- --quick` for smaller meshes, `--closed-only` or
+//! `--within-only` for one part)
 
 mod workloads;
 
@@ -233,6 +236,11 @@ fn main() {
     } else {
         (200, 200, 1000)
     };
+    let models = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models");
+    if std::env::args().any(|a| a == "--within-only") {
+        within_section(&models);
+        return;
+    }
     if std::env::args().any(|a| a == "--closed-only") {
         closed_torus(big);
         return;
@@ -268,7 +276,6 @@ fn main() {
         "| mesh | triangles | pairs | self_collide ms | triangle tests | brute force ms | collide(m, m) ms |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|");
-    let models = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models");
     for name in ["bunny.tris", "torus.tris"] {
         let tris = plain(&read_tris(&models.join(name)).unwrap());
         self_collision_row(name, &tris, true);
@@ -286,6 +293,56 @@ fn main() {
     self_collision_row("torus 1.6k, one vertex pulled through", &bent, true);
     self_collision_row("UV sphere", &ball, false);
     closed_torus(big);
+    within_section(&models);
+}
+
+/// Pairs within a distance of the bunny and the torus model against brute force over all pairs.
+fn within_section(models: &std::path::Path) {
+    let bunny = plain(&read_tris(&models.join("bunny.tris")).unwrap());
+    let torus = plain(&read_tris(&models.join("torus.tris")).unwrap());
+    let (ma, mb) = (model(&bunny), model(&torus));
+    // Both about unit size, overlapping at offset 0.
+    println!(
+        "\nPairs within a distance: bunny ({}) against torus ({})",
+        bunny.len(),
+        torus.len()
+    );
+    println!("| offset | tolerance | pairs | within_distance ms | bound tests | brute force ms |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    let id = Pose::identity();
+    for offset in [0.0, 0.05] {
+        let pose = Pose::from_translation([offset, 0.0, 0.0]);
+        let wb: Vec<pqp::geometry::Tri> = torus
+            .iter()
+            .map(|t| t.map(|p| pose.transform_point(&Vec3::from(p))))
+            .collect();
+        let wa: Vec<pqp::geometry::Tri> = bunny.iter().map(|t| t.map(Vec3::from)).collect();
+        for tol in [0.0, 0.001, 0.01, 0.05] {
+            let mut r = None;
+            let ours = time(3, || {
+                r = Some(pqp::within_distance(&ma, &id, &mb, &pose, tol).unwrap())
+            });
+            let r = r.unwrap();
+            let mut n = 0;
+            let brute = time(1, || {
+                n = 0;
+                for ta in &wa {
+                    for tb in &wb {
+                        let near = pqp::geometry::tri_overlap(ta, tb)
+                            || (tol > 0.0 && pqp::geometry::tri_distance(ta, tb).distance <= tol);
+                        n += usize::from(near);
+                    }
+                }
+            });
+            assert_eq!(n, r.num_pairs());
+            println!(
+                "| {offset} | {tol} | {n} | {:.3} | {} | {:.0} |",
+                ours * 1e3,
+                r.stats.bv_tests,
+                brute * 1e3
+            );
+        }
+    }
 }
 
 /// Self-collision of a closed torus of `big * big` triangles, with no self-intersection.

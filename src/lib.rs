@@ -60,5 +60,5 @@ pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
     CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats,
     Strategy, ToleranceResult, collide, collide_into, distance, distance_into, self_collide,
-    self_collide_into, tolerance, tolerance_into,
+    self_collide_into, tolerance, tolerance_into, within_distance, within_distance_into,
 };

@@ -38,6 +38,8 @@ mod self_collide;
 mod distance;
 // Tolerance.
 mod tolerance;
+// Pairs within a distance.
+mod within_distance;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -55,6 +57,7 @@ pub use model::*;
 pub use refit::*;
 pub use self_collide::*;
 pub use tolerance::*;
+pub use within_distance::*;
 
 use crate::error::Error;
 use crate::math::Pose;
