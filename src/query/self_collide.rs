@@ -10,7 +10,7 @@
 
 use super::collide::{CollideResult, ContactMode, ContactPair, search_pairs};
 use crate::error::Error;
-use crate::geometry::predicates::{P2, orient2d, orient3d};
+use crate::geometry::predicates::{P2, PlaneFilter, orient2d, orient3d, orient3d_exact};
 use crate::geometry::{Tri, tri_overlap};
 use crate::math::{RelPose, Vec3};
 use crate::model::Model;
@@ -100,7 +100,8 @@ pub fn self_contact(a: &Tri, b: &Tri) -> bool {
     let count = |f: &[bool; 3]| f.iter().filter(|&&s| s).count();
     let (na, nb) = (count(&in_b), count(&in_a));
     if na == 0 {
-        return tri_overlap(a, b);
+        // Most such pairs met by a search are apart along a coordinate axis.
+        return !boxes_apart(a, b) && tri_overlap(a, b);
     }
     if na == 3 && nb == 3 {
         // The same vertex sets.
@@ -126,6 +127,21 @@ pub fn self_contact(a: &Tri, b: &Tri) -> bool {
         }
     }
     unshared_part_meets(a, &in_b, b, edge) || unshared_part_meets(b, &in_a, a, edge)
+}
+
+/// Whether the triangles' axis-aligned boxes are apart (exact: comparisons only).
+fn boxes_apart(a: &Tri, b: &Tri) -> bool {
+    (0..3).any(|k| {
+        let (alo, ahi) = (
+            a[0][k].min(a[1][k]).min(a[2][k]),
+            a[0][k].max(a[1][k]).max(a[2][k]),
+        );
+        let (blo, bhi) = (
+            b[0][k].min(b[1][k]).min(b[2][k]),
+            b[0][k].max(b[1][k]).max(b[2][k]),
+        );
+        ahi < blo || bhi < alo
+    })
 }
 
 /// Whether the hull of the vertices of `t` not flagged in `shared` (a point, a segment or the
@@ -166,8 +182,13 @@ fn unshared_part_meets(
 /// than [`tri_overlap`] on a segment, whose own plane it cannot use; neighbours in a fine mesh
 /// are nearly coplanar, and the segments opposite a shared vertex are the common case.
 fn segment_meets(s0: &Vec3, s1: &Vec3, t: &Tri) -> bool {
-    let o0 = orient3d(&t[0], &t[1], &t[2], s0);
-    let o1 = orient3d(&t[0], &t[1], &t[2], s1);
+    // One plane for both ends; the exact sign only where the float one is not certain.
+    let plane = PlaneFilter::new(&t[0], &t[1], &t[2]);
+    let side = |s: &Vec3| match plane.eval(s) {
+        (v, true) => v,
+        _ => orient3d_exact(&t[0], &t[1], &t[2], s),
+    };
+    let (o0, o1) = (side(s0), side(s1));
     if (o0 > 0.0 && o1 > 0.0) || (o0 < 0.0 && o1 < 0.0) {
         return false;
     }
