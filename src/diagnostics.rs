@@ -63,6 +63,51 @@ pub fn minimal_bvtt_size(
     Ok(minimal_bvtt(m1, pose1, m2, pose2, distance)?.nodes_below)
 }
 
+/// Checks that every volume of a built model's hierarchy contains its triangles as strictly as a
+/// build leaves them: each node's swept sphere volume and box contain every vertex of every
+/// triangle below it as their `contains` measures it with no allowance, and the model-wide bound
+/// on the volumes' scales (the queries' rounding allowances are relative to it) holds. `Err`
+/// describes the first failure (for tests of refits and builds).
+pub fn check_containment(m: &Model) -> Result<(), String> {
+    use crate::bounding_volume::BoundingVolume;
+    use crate::bvh::{NodeKind, NodeRef};
+    let b = m.bvh().map_err(|e| format!("{e:?}"))?;
+    // Each node with the triangles below it, found by one descent per node from the root: the
+    // nodes' triangle lists, collected bottom-up.
+    fn below(b: &Bvh, r: NodeRef, out: &mut Vec<(NodeRef, Vec<usize>)>) -> Vec<usize> {
+        let tris = match r.kind() {
+            NodeKind::Leaf(t) => vec![t],
+            NodeKind::Inner(_) => {
+                let [c0, c1] = b.children(r);
+                let mut v = below(b, c0, out);
+                v.extend(below(b, c1, out));
+                v
+            }
+        };
+        out.push((r, tris.clone()));
+        tris
+    }
+    let mut nodes = Vec::new();
+    below(b, b.root(), &mut nodes);
+    for (r, tris) in nodes {
+        let (ssv, obb) = (b.ssv(r), b.obb(r));
+        if ssv.scale() > b.scale {
+            return Err(format!("node {r}: scale {} above {}", ssv.scale(), b.scale));
+        }
+        for t in tris {
+            for v in &b.tri(t) {
+                if !ssv.contains(v, 0.0) {
+                    return Err(format!("node {r}: swept sphere {ssv:?} misses {v:?}"));
+                }
+                if !obb.contains(v, 0.0) {
+                    return Err(format!("node {r}: box {obb:?} misses {v:?}"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Walks the BVTT with the query's own expansion (`query::search::expand`: the same descent rule
 /// and the same bounds), descending a node only when its bound is below `d`.
 fn walk(b1: &Bvh, b2: &Bvh, rel: &RelPose, d: f64) -> MinimalBvtt {

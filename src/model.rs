@@ -198,6 +198,53 @@ impl Model {
         Ok(())
     }
 
+    /// Moves the triangles of a built model: `tris[k]` holds the new vertices `(p1, p2, p3)` of the
+    /// `k`th triangle added; ids, the tree and each node's frame stay, and every bounding volume
+    /// is refitted bottom-up around the new triangles in O(n), without a rebuild. Every query
+    /// stays exact; as the shape drifts from the one the model was built on the volumes get
+    /// looser and queries slower (rebuild then: see BENCHMARKS.md, Refit, and `pqp_model_refit`).
+    /// Like the build calls it needs the model to itself (`&mut self`).
+    ///
+    /// Errors, with the model unchanged: `Err(UnprocessedModel)` if the model is not built,
+    /// `Err(InvalidArgument)` if `tris.len()` is not [`num_triangles`](Model::num_triangles),
+    /// `Err(NonFiniteCoordinate)` if a coordinate is NaN, infinite or beyond
+    /// [`MAX_COORDINATE`] in magnitude (as [`add_triangle`](Model::add_triangle)),
+    /// `Err(ModelOutOfMemory)` if the new vertex arrays cannot be allocated.
+    ///
+    /// ```
+    /// use pqp::Model;
+    /// let mut m = Model::from_triangles([([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 7)]).unwrap();
+    /// m.refit(&[[[0.0, 0.0, 1.0], [2.0, 0.0, 1.0], [0.0, 2.0, 1.0]]]).unwrap();
+    /// assert!(m.refit(&[]).is_err());
+    /// ```
+    pub fn refit(&mut self, tris: &[[[f64; 3]; 3]]) -> Result<(), Error> {
+        let volume = self.volume;
+        let bvh = match (&self.state, &mut self.bvh) {
+            (BuildState::Built, Some(b)) => b,
+            _ => return Err(Error::UnprocessedModel),
+        };
+        if tris.len() != bvh.num_tris() {
+            return Err(Error::InvalidArgument);
+        }
+        let ok = tris
+            .as_flattened()
+            .as_flattened()
+            .iter()
+            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE);
+        if !ok {
+            return Err(Error::NonFiniteCoordinate);
+        }
+        let mut new: Vec<Tri> = Vec::new();
+        new.try_reserve_exact(tris.len())
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        new.extend(tris.iter().map(|t| t.map(Vec3::from)));
+        bvh.refit(&new, volume)?;
+        // A new build id: what results cached for the old shape (closest pairs, fronts with
+        // their bounds) must not be reused.
+        self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);
+        Ok(())
+    }
+
     /// A deep copy of the model in its state (empty, being built, or built; the volume choices
     /// too), as `clone` makes it, but `Err(ModelOutOfMemory)` when its storage cannot be allocated
     /// (`clone` aborts the process then). The copy answers every query exactly as the original;

@@ -546,3 +546,79 @@ fn convex_models() {
         pqp_convex_cache_destroy(null_mut());
     }
 }
+
+/// Refit with PQP 1.3's views made before and after (the old arrays are dropped, new ones made),
+/// self-collision and pairs within a distance, with their error paths.
+#[test]
+fn refit_self_collide_within_distance() {
+    // SAFETY: every handle is live until destroyed; every pointer points to what the header asks.
+    unsafe {
+        let tris = [tri(0.0), tri(1.0), tri(2.0)];
+        let m = model(&tris);
+        let (mut t, mut n) = (null(), 0);
+        assert_eq!(pqp_model_tris(m, &mut t, &mut n), PQP_OK);
+        let (mut b, mut nb) = (null(), 0);
+        assert_eq!(pqp_model_bvs(m, &mut b, &mut nb), PQP_OK);
+        // Fold the second triangle onto the first: identical vertices, so they collide.
+        let moved = [tri(0.0), tri(0.0), tri(5.0)];
+        let flat = moved.as_flattened().as_flattened();
+        assert_eq!(
+            pqp_model_refit(null_mut(), flat.as_ptr(), 3),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!(pqp_model_refit(m, null(), 3), PQP_ERR_NULL_POINTER);
+        assert_eq!(
+            pqp_model_refit(m, flat.as_ptr(), 2),
+            PQP_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(pqp_model_refit(m, flat.as_ptr(), 3), PQP_OK);
+        assert_eq!(pqp_model_tris(m, &mut t, &mut n), PQP_OK);
+        assert_eq!((n, (*t.add(2)).p1[2]), (3, 5.0));
+        assert_eq!(pqp_model_bvs(m, &mut b, &mut nb), PQP_OK);
+        assert_eq!(nb, 5);
+        let r = pqp_collide_result_create();
+        assert_eq!(pqp_self_collide(r, m, PQP_ALL_CONTACTS), PQP_OK);
+        assert_eq!(pqp_collide_result_num_pairs(r), 1);
+        assert_eq!(
+            (pqp_collide_result_id1(r, 0), pqp_collide_result_id2(r, 0)),
+            (10, 11)
+        );
+        assert_eq!(pqp_self_collide(r, m, 7), PQP_ERR_INVALID_ARGUMENT);
+        assert_eq!(
+            pqp_self_collide(r, null(), PQP_ALL_CONTACTS),
+            PQP_ERR_NULL_POINTER
+        );
+        let other = model(&[tri(0.5)]);
+        assert_eq!(
+            pqp_within_distance(
+                r,
+                I.as_ptr(),
+                O.as_ptr(),
+                m,
+                I.as_ptr(),
+                O.as_ptr(),
+                other,
+                0.6
+            ),
+            PQP_OK
+        );
+        assert_eq!(pqp_collide_result_num_pairs(r), 2);
+        assert_eq!(
+            pqp_within_distance(
+                r,
+                I.as_ptr(),
+                O.as_ptr(),
+                m,
+                I.as_ptr(),
+                O.as_ptr(),
+                other,
+                -1.0
+            ),
+            PQP_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(pqp_collide_result_num_pairs(r), 2);
+        pqp_collide_result_destroy(r);
+        pqp_model_destroy(other);
+        pqp_model_destroy(m);
+    }
+}

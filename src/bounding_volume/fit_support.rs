@@ -10,6 +10,16 @@ pub(super) fn allowance(r: f64, dz: f64) -> f64 {
     ((r - dz) * (r + dz)).max(0.0).sqrt()
 }
 
+/// The radius `r` less point `i`'s pad (`pads` empty: no pads): how far from the core the centre
+/// of a ball of that pad may be for the ball to be within `r`.
+#[inline(always)]
+pub(super) fn padded_reach(r: f64, pads: &[f64], i: usize) -> f64 {
+    match pads.get(i) {
+        Some(p) => r - p,
+        None => r,
+    }
+}
+
 /// The centre of a small ball around `n` points given by `at(i)`, in whatever coordinates `at`
 /// returns: the centre of their bounding box, then a few steps of Badoiu and Clarkson's iteration
 /// (move towards the farthest point by a shrinking fraction), keeping the centre whose farthest

@@ -1,3 +1,4 @@
+use super::ssv_fit::REFIT_SLACK;
 use super::{BoundingVolume, OverlapVolume};
 use crate::geometry::Tri;
 use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3};
@@ -74,6 +75,34 @@ impl Obb {
             self.cover_point(p);
         }
         self
+    }
+
+    /// The box on `axes` (orthonormal right-handed columns) around `points` and `boxes` (not both
+    /// empty): what a refit puts around a node's children, a triangle's vertices or a child's box.
+    /// The points are covered exactly as `contains` measures them; for boxes the extents get an
+    /// allowance for rounding (about 1e-13 of the box's magnitudes), so that every point a child
+    /// box contains, as its `contains` measures it, this one contains as its own measures it.
+    pub(crate) fn enclosing(axes: &Mat3, points: &[Vec3], boxes: &[Obb]) -> Self {
+        let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+        for p in points {
+            let q = axes.tr_mul(p);
+            lo = lo.inf(&q);
+            hi = hi.sup(&q);
+        }
+        for b in boxes {
+            // The child's extents along each of these axes: its centre's projection plus its
+            // half extents along the child's axes, projected.
+            let c = axes.tr_mul(&b.center);
+            let e = axes.tr_mul(&b.axes).abs() * b.half;
+            lo = lo.inf(&(c - e));
+            hi = hi.sup(&(c + e));
+        }
+        let mut obb = Obb::from_bounds(axes, &lo, &hi).cover(points);
+        if !boxes.is_empty() {
+            let margin = REFIT_SLACK * (abs_sum(&obb.center) + obb.half.sum()) + UNDERFLOW_SLACK;
+            obb.half = obb.half.add_scalar(margin);
+        }
+        obb
     }
 
     /// [`cover`](Obb::cover) for one point.

@@ -1,7 +1,7 @@
 //! Rectangle swept sphere fit: a rectangle on the two axes of largest spread, swept by a sphere
 //! whose radius is half the spread along the third.
 
-use super::fit_support::allowance;
+use super::fit_support::{allowance, padded_reach};
 use super::ssv::Ssv;
 use crate::math::{Mat3, Vec3};
 
@@ -10,17 +10,23 @@ use crate::math::{Mat3, Vec3};
 /// that keeps every point within the radius, growing where a point beside a corner needs it.
 /// `local(i)` is the `i`th of the `count` points in the frame `axes`; `zmin` and `zmax` are the
 /// least and greatest `local(i).z`. Before [`Ssv::cover`].
+///
+/// `pads`, empty or one per point: the points are then balls of these radii (a refit fits a node
+/// around its children's volumes), `zmin` and `zmax` bound the balls, and each ball's centre is
+/// kept within the radius less its pad.
 pub(super) fn fit(
     axes: &Mat3,
     count: usize,
     local: impl Fn(usize) -> Vec3,
+    pads: &[f64],
     zmin: f64,
     zmax: f64,
 ) -> Ssv {
+    let reach = |i: usize| padded_reach(r_of(zmin, zmax), pads, i);
     // The plane halves the spread along the normal; the radius is half that spread.
     // Halve before adding: no overflow whatever the magnitudes.
     let zc = 0.5 * zmin + 0.5 * zmax;
-    let r = (0.5 * zmax - 0.5 * zmin).max(0.0);
+    let r = r_of(zmin, zmax);
 
     // Each point may stick out beside the rectangle by its allowance, so a side needs to reach
     // only to the point's projection minus (or plus) it. These are the least extents for which
@@ -34,7 +40,7 @@ pub(super) fn fit(
         if q.x >= x0 && q.x <= x1 && q.y >= y0 && q.y <= y1 {
             continue;
         }
-        let h = allowance(r, q.z - zc);
+        let h = allowance(reach(i), q.z - zc);
         x0 = x0.min(q.x + h);
         x1 = x1.max(q.x - h);
         y0 = y0.min(q.y + h);
@@ -67,7 +73,7 @@ pub(super) fn fit(
         if dx <= 0.0 || dy <= 0.0 {
             continue;
         }
-        let h = allowance(r, q.z - zc);
+        let h = allowance(reach(i), q.z - zc);
         if dx * dx + dy * dy <= h * h {
             continue;
         }
@@ -108,4 +114,10 @@ pub(super) fn fit(
         lengths: [(x1 - x0).max(0.0), (y1 - y0).max(0.0)],
         radius: r,
     }
+}
+
+/// Half the spread `zmin..zmax`: the radius.
+#[inline(always)]
+fn r_of(zmin: f64, zmax: f64) -> f64 {
+    (0.5 * zmax - 0.5 * zmin).max(0.0)
 }

@@ -4,7 +4,7 @@
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
-use crate::geometry::{RESCALE_LO, Tri};
+use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
 use nalgebra::SymmetricEigen;
 
@@ -106,13 +106,7 @@ impl Bvh {
 
         let (verts, faces) = share_vertices(&corners)?;
         let scale = Bvh::scale_bound(&nodes, &verts);
-        let tiny = faces.iter().any(|f| {
-            let m = f
-                .iter()
-                .map(|&i| verts[i as usize].amax())
-                .fold(0.0, f64::max);
-            m < RESCALE_LO
-        });
+        let tiny = Bvh::has_tiny(&verts, &faces);
         Ok(Bvh {
             nodes,
             verts,
@@ -129,7 +123,7 @@ impl Bvh {
 /// The distinct vertices of the triangles (equal coordinates, bit for bit, stored once, in the order
 /// they first appear) and each triangle's vertex indices. Finds repeats with a hash table of
 /// corners, kept at most half full: expected O(n).
-fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
+pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
     let oom = |_| Error::ModelOutOfMemory;
     let corners = tris.as_flattened();
     let bits = |c: usize| {
@@ -336,7 +330,7 @@ fn fit_volumes(
             return (ssv, Obb::from_bounds(axes, &lo, &hi).cover(points));
         }
     };
-    let mut ssv = Ssv::fit_uncovered(kind, axes, points.len(), at, lo.z, hi.z);
+    let mut ssv = Ssv::fit_uncovered(kind, axes, points.len(), at, &[], lo.z, hi.z);
     let mut obb = Obb::from_bounds(axes, &lo, &hi);
 
     // Both covers in one pass, each exactly as `Ssv::cover` and `Obb::cover` do it, but only for
@@ -411,7 +405,8 @@ fn hybrid_by_volume(
     zmin: f64,
     zmax: f64,
 ) -> Ssv {
-    let fit = |kind| Ssv::fit_uncovered(kind, axes, points.len(), local, zmin, zmax).cover(points);
+    let fit =
+        |kind| Ssv::fit_uncovered(kind, axes, points.len(), local, &[], zmin, zmax).cover(points);
     let mut best = fit(SsvKind::Point);
     // The sphere is the largest of the three: measure in its radius (a positive one).
     let unit = if best.radius > 0.0 { best.radius } else { 1.0 };

@@ -15,6 +15,7 @@
 
 mod build;
 mod pqp_view;
+mod refit;
 mod volume_choice;
 
 pub(crate) use build::MAX_DEPTH;
@@ -23,8 +24,8 @@ pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
-use crate::geometry::RESCALE_HI;
 use crate::geometry::Tri;
+use crate::geometry::{RESCALE_HI, RESCALE_LO};
 use crate::math::{Mat3, RelPose, Vec3, frame_from};
 
 /// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
@@ -224,6 +225,17 @@ impl Bvh {
         let inner = nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max);
         let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
         inner.max(5.0 * vertex)
+    }
+
+    /// Whether some triangle has every coordinate below `RESCALE_LO` in magnitude (see `tiny`).
+    fn has_tiny(verts: &[Vec3], faces: &[[u32; 3]]) -> bool {
+        faces.iter().any(|f| {
+            let m = f
+                .iter()
+                .map(|&i| verts[i as usize].amax())
+                .fold(0.0, f64::max);
+            m < RESCALE_LO
+        })
     }
 
     /// Whether every pair of a triangle of `self` and one of `other` posed by `rel` has its largest

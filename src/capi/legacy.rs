@@ -205,6 +205,12 @@ impl LegacyView {
         *self = LegacyView::default();
     }
 
+    /// After a refit: every triangle and volume moved, so every view is dropped (the next request
+    /// makes it afresh).
+    pub(crate) fn refitted(&mut self) {
+        *self = LegacyView::default();
+    }
+
     /// After `add_tri`: a stored triangle `t` (in `Some`) is appended to the triangle views that
     /// exist (dropping one that cannot grow), so that a caller reading the triangles after every
     /// add does linear work in all, not quadratic. A model being built has no volume view.
@@ -346,8 +352,8 @@ unsafe fn hand_out<T>(
 /// @param m         the model, in any state.
 /// @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
 ///                  any error). It stays valid, and its contents unchanged, until the next
-///                  pqp_model_begin, pqp_model_add_tri or pqp_model_end on m, or
-///                  pqp_model_destroy(m).
+///                  pqp_model_begin, pqp_model_add_tri, pqp_model_end or
+///                  pqp_model_refit on m, or pqp_model_destroy(m).
 /// @param num_tris  receives the number of triangles (0 on any error).
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, tris or num_tris is NULL;
 ///         PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated; PQP_ERR_INTERNAL on an
@@ -385,8 +391,8 @@ pub unsafe extern "C" fn pqp_model_tris(
 ///
 /// @param m        the model.
 /// @param bvs      receives the array (owned by m; NULL on any error). It stays valid, and its
-///                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri or
-///                 pqp_model_end on m, or pqp_model_destroy(m).
+///                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri,
+///                 pqp_model_end or pqp_model_refit on m, or pqp_model_destroy(m).
 /// @param num_bvs  receives the number of volumes (0 on any error).
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
 ///         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;

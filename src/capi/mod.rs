@@ -26,14 +26,20 @@
 
 // In the order the header lists them (cbindgen follows the module order).
 mod model;
+// Refit: moving a built model's triangles.
+mod refit;
 // PQP 1.3's view of a model and its volumes' functions.
 mod legacy;
 // Collision.
 mod collide;
+// Self-collision.
+mod self_collide;
 // Separation distance.
 mod distance;
 // Tolerance.
 mod tolerance;
+// Pairs within a distance.
+mod within_distance;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -48,7 +54,10 @@ pub use geometry::*;
 pub use legacy::*;
 pub use misc::*;
 pub use model::*;
+pub use refit::*;
+pub use self_collide::*;
 pub use tolerance::*;
+pub use within_distance::*;
 
 use crate::error::Error;
 use crate::math::Pose;

@@ -56,6 +56,10 @@ impl CollideResult {
     pub fn num_pairs(&self) -> usize {
         self.pairs.len()
     }
+    /// The pair list, for the queries that fill it.
+    pub(super) fn pairs_mut(&mut self) -> &mut Vec<ContactPair> {
+        &mut self.pairs
+    }
     /// Releases the pair list's memory (PQP's `FreePairsList`).
     pub fn free_pairs(&mut self) {
         self.pairs = Vec::new();
@@ -100,25 +104,54 @@ pub fn collide_into(
     let start = Instant::now();
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     result.pairs.clear();
-    let mut stats = if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv
-    {
-        search(result, b1, b2, &rel, mode, |b, r| b.ssv(r))
-    } else {
-        search(result, b1, b2, &rel, mode, |b, r| b.obb(r))
+    // Two triangles: test them at once (their volumes, computed from them, would cost about as
+    // much as the test).
+    let leaf_pair = |ta: usize, tb: usize| {
+        let t2 = b2.tri(tb);
+        let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
+        tri_overlap(&b1.tri(ta), &moved).then(|| ContactPair {
+            id1: b1.ids[ta],
+            id2: b2.ids[tb],
+        })
     };
+    let mut stats = search_pairs(&mut result.pairs, b1, b2, &rel, mode, false, leaf_pair);
     stats.query_time_secs = start.elapsed().as_secs_f64();
     result.stats = stats;
     Ok(())
 }
 
-/// The search of [`collide_into`] on the overlap volume `volume` picks from each node: depth first,
-/// descending the larger volume, testing the triangles of overlapping leaf pairs.
-fn search<V: OverlapVolume>(
-    result: &mut CollideResult,
+/// The search of [`collide_into`] (and of the self-collision query) on the models' collision
+/// volume (the swept sphere volumes if both models ask for them, else the boxes): see [`search`].
+pub(super) fn search_pairs(
+    pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
     mode: ContactMode,
+    same: bool,
+    leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
+) -> Stats {
+    if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv {
+        search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.ssv(r))
+    } else {
+        search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.obb(r))
+    }
+}
+
+/// The search on the overlap volume `volume` picks from each node: depth first, descending the
+/// larger volume; `leaf_pair` tests the triangles (by leaf slot) of overlapping leaf pairs and
+/// gives the pair to report, if any. `same`: `b1` and `b2` are one hierarchy searched against
+/// itself (`rel` the identity): a node against itself is its children against themselves and
+/// against each other, so each pair of distinct triangles is met once.
+#[allow(clippy::too_many_arguments)]
+fn search<V: OverlapVolume>(
+    pairs: &mut Vec<ContactPair>,
+    b1: &Bvh,
+    b2: &Bvh,
+    rel: &RelPose,
+    mode: ContactMode,
+    same: bool,
+    mut leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
     let mut stats = Stats::default();
@@ -130,23 +163,48 @@ fn search<V: OverlapVolume>(
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
+        if same && p.a == p.b {
+            if !p.a.is_leaf() {
+                let [c0, c1] = b1.children(p.a);
+                stack.push(NodePair { a: c0, b: c1, ..p });
+                stack.push(NodePair { a: c1, b: c1, ..p });
+                stack.push(NodePair { a: c0, b: c0, ..p });
+            }
+            continue;
+        }
         if p.a.is_leaf() && p.b.is_leaf() {
-            // Two triangles: test them at once (their volumes, computed from them, would cost
-            // about as much as the test).
-            let (ta, tb) = (p.a.triangle(), p.b.triangle());
             stats.tri_tests += 1;
-            let t2 = b2.tri(tb);
-            let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
-            if tri_overlap(&b1.tri(ta), &moved) {
-                result.pairs.push(ContactPair {
-                    id1: b1.ids[ta],
-                    id2: b2.ids[tb],
-                });
+            if let Some(pair) = leaf_pair(p.a.triangle(), p.b.triangle()) {
+                pairs.push(pair);
                 if mode == ContactMode::First {
                     break;
                 }
             }
             continue;
+        }
+        // Against itself, a triangle against a node of two triangles goes straight to the two
+        // triangle tests: in a mesh such pairs are mostly neighbours, whose volumes overlap and
+        // whose test is cheaper than the volumes'.
+        if same && (p.a.is_leaf() || p.b.is_leaf()) {
+            let (leaf, node) = if p.a.is_leaf() {
+                (p.a, p.b)
+            } else {
+                (p.b, p.a)
+            };
+            let [c0, c1] = b1.children(node);
+            if c0.is_leaf() && c1.is_leaf() {
+                stack.push(NodePair {
+                    a: leaf,
+                    b: c1,
+                    ..p
+                });
+                stack.push(NodePair {
+                    a: leaf,
+                    b: c0,
+                    ..p
+                });
+                continue;
+            }
         }
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
         if p.a.is_leaf() || p.b.is_leaf() {

@@ -13,14 +13,18 @@ mod front;
 mod layering_tests;
 mod queue;
 pub(crate) mod search;
+mod self_collide;
 mod strategy;
 mod tolerance;
 mod traversal;
+mod within_distance;
 
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
+pub use self_collide::{self_collide, self_collide_into, self_contact};
 pub use strategy::{Search, Strategy};
 pub use tolerance::{ToleranceResult, tolerance, tolerance_into};
+pub use within_distance::{within_distance, within_distance_into};
 
 use crate::bvh::Bvh;
 use crate::error::Error;
