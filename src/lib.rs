@@ -58,7 +58,7 @@ pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
 pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
-    CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats,
-    Strategy, ToleranceResult, collide, collide_into, distance, distance_into, tolerance,
-    tolerance_into,
+    CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, PointResult, Search,
+    Stats, Strategy, ToleranceResult, closest_point, collide, collide_into, distance,
+    distance_into, signed_distance, tolerance, tolerance_into, winding_number,
 };

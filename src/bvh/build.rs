@@ -122,6 +122,7 @@ impl Bvh {
             collision,
             scale,
             tiny,
+            boundary: std::sync::OnceLock::new(),
         })
     }
 }
