@@ -5,14 +5,16 @@
 //! taken as orthonormal), and the answer carried back.
 
 use super::prepare_point as prepare;
-use super::traversal::{NodePair, PairStack};
+use super::queue::RadixQueue;
+use super::traversal::NodePair;
 use super::winding::winding_at;
 use crate::bounding_volume::Ssv;
 use crate::bvh::{Bvh, NodeKind, NodeRef};
 use crate::error::Error;
 use crate::geometry::point_triangle;
-use crate::math::{Pose, RelPose, Vec3};
+use crate::math::{Pose, RelPose, Vec3, most};
 use crate::model::Model;
+use std::cell::RefCell;
 
 /// The answer of [`closest_point`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,8 +34,9 @@ pub struct PointResult {
 /// `max_distance` (which may be infinite).
 ///
 /// Exact: the distance is that of the exact point-triangle routine to the nearest triangle, found
-/// by a depth-first descent of the hierarchy, nearer child first, pruned by the swept sphere
-/// volumes' distance bounds and by the best distance so far (`max_distance` to start with).
+/// by a priority-directed descent of the hierarchy (the node of least distance bound first),
+/// pruned by the swept sphere volumes' distance bounds and by the best distance so far
+/// (`max_distance` to start with).
 /// Degenerate triangles count as the segment or point they span.
 ///
 /// Errors: `UnprocessedModel` (not built), `NonFinitePose`, `NonFiniteCoordinate` (a coordinate
@@ -107,8 +110,15 @@ struct Nearest {
     q: Vec3,
 }
 
+thread_local! {
+    /// The queue of the closest-point search, one per thread and reused from query to query (its
+    /// buckets keep their capacity), so that only a thread's first query allocates.
+    static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
+}
+
 /// The nearest triangle to `p` (model frame) within `max_distance`, if any: the first found at the
-/// least distance by a depth-first descent, nearer child first.
+/// least distance by a priority-directed descent, the node of least bound first (of equal bounds,
+/// the last queued), so that no node whose bound exceeds the final distance is opened.
 fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     // Every bound below is a distance computed from p and a volume: its rounding is within the
     // allowance of a bound between volumes of the model's scale and the point's.
@@ -133,38 +143,35 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         leaf(t, &mut cutoff, &mut best);
         return best;
     }
-    let mut stack = PairStack::new();
-    stack.push(entry(root, 0.0));
-    while let Some(NodePair { a: r, bound, .. }) = stack.pop() {
-        if bound > cutoff {
-            continue;
-        }
-        let mut pending = [entry(r, f64::INFINITY); 2];
-        let mut n = 0;
-        for c in bvh.children(r) {
-            match c.kind() {
-                NodeKind::Leaf(t) => leaf(t, &mut cutoff, &mut best),
-                NodeKind::Inner(_) => {
-                    let v = bvh.inner_ssv(c).full();
-                    pending[n] = entry(c, v.core_distance(p) - v.radius - slack);
-                    n += 1;
+    QUEUE.with(|q| {
+        // A query never calls another while it holds the queue, so the borrow cannot fail.
+        let mut queue = q.borrow_mut();
+        queue.clear();
+        queue.push(entry(root, 0.0));
+        while let Some(NodePair { a: r, bound, .. }) = queue.pop() {
+            if bound > cutoff {
+                break;
+            }
+            for c in bvh.children(r) {
+                match c.kind() {
+                    NodeKind::Leaf(t) => leaf(t, &mut cutoff, &mut best),
+                    NodeKind::Inner(_) => {
+                        // Raised to the parent's (which bounds the child's triangles too): the
+                        // queue takes no key below the last popped, nor a negative one.
+                        let v = bvh.inner_ssv(c).full();
+                        let b = most(v.core_distance(p) - v.radius - slack, bound);
+                        if b <= cutoff {
+                            queue.push(entry(c, b));
+                        }
+                    }
                 }
             }
         }
-        // The farther pushed first, so the nearer is searched first.
-        if n == 2 && pending[0].bound < pending[1].bound {
-            pending.swap(0, 1);
-        }
-        for e in &pending[..n] {
-            if e.bound <= cutoff {
-                stack.push(*e);
-            }
-        }
-    }
+    });
     best
 }
 
-/// A stack entry: node `r` with the lower bound `bound` on its distance.
+/// A queue entry: node `r` with the lower bound `bound` on its distance.
 #[inline(always)]
 fn entry(r: NodeRef, bound: f64) -> NodePair {
     NodePair { a: r, b: r, bound }
