@@ -17,7 +17,7 @@ use super::traversal::{NodePair, PairStack};
 use crate::bounding_volume::{BoundingVolume, Ssv};
 use crate::bvh::{Bvh, NodeKind, NodeRef, NodeSurface};
 use crate::error::Error;
-use crate::geometry::solid_angle;
+use crate::geometry::{SolidAngleSum, solid_angle};
 use crate::math::{Pose, RelPose, Vec3};
 use crate::model::Model;
 use std::f64::consts::PI;
@@ -80,13 +80,21 @@ pub(crate) fn winding_at(bvh: &Bvh, p: &Vec3) -> Result<f64, Error> {
                 None => 0.0,
                 Some(e) => {
                     let o = bvh.vertex(e[0]) - p;
-                    edges
-                        .iter()
-                        .map(|e| solid_angle(&o, &(bvh.vertex(e[0]) - p), &(bvh.vertex(e[1]) - p)))
-                        .sum()
+                    let mut sum = SolidAngleSum::default();
+                    for e in edges {
+                        sum.add(&o, &(bvh.vertex(e[0]) - p), &(bvh.vertex(e[1]) - p));
+                    }
+                    sum.total()
                 }
             },
-            NodeSurface::Triangles(slots) => slots.map(|t| triangle_angle(bvh, t, p)).sum(),
+            NodeSurface::Triangles(slots) => {
+                let mut sum = SolidAngleSum::default();
+                for t in slots {
+                    let [a, b, c] = bvh.tri(t);
+                    sum.add(&(a - p), &(b - p), &(c - p));
+                }
+                sum.total()
+            }
         };
     }
     Ok(angle / (4.0 * PI))
