@@ -56,16 +56,20 @@ pub fn winding_number(model: &Model, pose: &Pose, point: &Vec3) -> Result<f64, E
 pub(crate) fn winding_at(bvh: &Bvh, p: &Vec3) -> Result<f64, Error> {
     let root = bvh.root();
     if let NodeKind::Leaf(t) = root.kind() {
-        return Ok(triangle_angle(bvh, t, p) / (4.0 * PI));
+        let [a, b, c] = bvh.tri(t);
+        return Ok(solid_angle(&(a - p), &(b - p), &(c - p)) / (4.0 * PI));
     }
     let boundaries = bvh.boundaries()?;
     let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
-    let mut angle = 0.0;
+    // One sum for every solid angle of the query (see `SolidAngleSum`: one atan2 in all).
+    let mut sum = SolidAngleSum::default();
+    let mut add = |a: Vec3, b: Vec3, c: Vec3| sum.add(&(a - p), &(b - p), &(c - p));
     let mut stack = PairStack::new();
     stack.push(entry(root));
     while let Some(NodePair { a: r, .. }) = stack.pop() {
         let NodeKind::Inner(_) = r.kind() else {
-            angle += triangle_angle(bvh, r.triangle(), p);
+            let [a, b, c] = bvh.tri(r.triangle());
+            add(a, b, c);
             continue;
         };
         let v = bvh.inner_ssv(r).full();
@@ -75,36 +79,25 @@ pub(crate) fn winding_at(bvh: &Bvh, p: &Vec3) -> Result<f64, Error> {
             stack.push(entry(c1));
             continue;
         }
-        angle += match boundaries.node(r) {
-            NodeSurface::Fan(edges) => match edges.first() {
-                None => 0.0,
-                Some(e) => {
-                    let o = bvh.vertex(e[0]) - p;
-                    let mut sum = SolidAngleSum::default();
+        match boundaries.node(r) {
+            NodeSurface::Fan(edges) => {
+                // From the first boundary vertex (a closed node has none, and adds nothing).
+                if let Some(e) = edges.first() {
+                    let o = bvh.vertex(e[0]);
                     for e in edges {
-                        sum.add(&o, &(bvh.vertex(e[0]) - p), &(bvh.vertex(e[1]) - p));
+                        add(o, bvh.vertex(e[0]), bvh.vertex(e[1]));
                     }
-                    sum.total()
                 }
-            },
+            }
             NodeSurface::Triangles(slots) => {
-                let mut sum = SolidAngleSum::default();
                 for t in slots {
                     let [a, b, c] = bvh.tri(t);
-                    sum.add(&(a - p), &(b - p), &(c - p));
+                    add(a, b, c);
                 }
-                sum.total()
             }
-        };
+        }
     }
-    Ok(angle / (4.0 * PI))
-}
-
-/// The solid angle triangle `t` (slot in leaf order) subtends at `p`.
-#[inline]
-fn triangle_angle(bvh: &Bvh, t: usize, p: &Vec3) -> f64 {
-    let [a, b, c] = bvh.tri(t);
-    solid_angle(&(a - p), &(b - p), &(c - p))
+    Ok(sum.total() / (4.0 * PI))
 }
 
 /// A stack entry for node `r`.
