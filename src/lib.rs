@@ -58,7 +58,8 @@ pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
 pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
-    CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats,
-    Strategy, ToleranceResult, collide, collide_into, distance, distance_into, self_collide,
-    self_collide_into, tolerance, tolerance_into, within_distance, within_distance_into,
+    CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, PointResult, Search,
+    Stats, Strategy, ToleranceResult, closest_point, collide, collide_into, distance,
+    distance_into, self_collide, self_collide_into, signed_distance, tolerance, tolerance_into,
+    winding_number, within_distance, within_distance_into,
 };

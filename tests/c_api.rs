@@ -44,6 +44,11 @@ fn refit_and_self_collision_from_c() {
 }
 
 #[test]
+fn point_queries_from_c() {
+    c_program("point");
+}
+
+#[test]
 fn pqp_view_of_a_model_from_c() {
     c_program("legacy_view");
 }
@@ -144,5 +149,18 @@ fn demos_run() {
             .arg(models.join("torus.tris"));
         let out = c_toolchain::run(cmd, src);
         assert!(!out.stdout.is_empty());
+    }
+    // The point-query example, on its own cube and on the bunny.
+    let exe = build_program(
+        &root().join("examples/closest_point.c"),
+        "c99",
+        "closest_point",
+    );
+    for args in [vec![], vec![models.join("bunny.tris")]] {
+        let mut cmd = std::process::Command::new(&exe);
+        cmd.args(&args);
+        let out = c_toolchain::run(cmd, "closest_point");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("signed distance"), "{text}");
     }
 }

@@ -622,3 +622,61 @@ fn refit_self_collide_within_distance() {
         pqp_model_destroy(m);
     }
 }
+
+#[test]
+fn point_queries() {
+    // SAFETY: every pointer is NULL (where an error is expected) or points to what the header
+    // asks: live models, 9 and 3 doubles, a writable result or double.
+    unsafe {
+        let m = model(&[tri(0.0), tri(1.0), tri(2.0)]);
+        let p = [0.2, 0.2, 5.0];
+        let mut r = pqp_point_result {
+            distance: 0.0,
+            point: [0.0; 3],
+            triangle: 0,
+        };
+        assert_eq!(
+            pqp_closest_point(&mut r, I.as_ptr(), O.as_ptr(), m, p.as_ptr(), f64::INFINITY),
+            PQP_OK
+        );
+        assert_eq!(
+            (r.distance, r.point, r.triangle),
+            (3.0, [0.2, 0.2, 2.0], 12)
+        );
+        assert_eq!(
+            pqp_closest_point(&mut r, I.as_ptr(), O.as_ptr(), m, p.as_ptr(), 1.0),
+            PQP_OK
+        );
+        assert_eq!((r.distance, r.triangle), (f64::INFINITY, -1));
+        assert!(r.point.iter().all(|c| c.is_nan()));
+        let mut sd = 0.0;
+        assert_eq!(
+            pqp_signed_distance(&mut sd, I.as_ptr(), O.as_ptr(), m, p.as_ptr()),
+            PQP_OK
+        );
+        assert_eq!(sd, 3.0);
+        // The answer may overwrite its input.
+        let mut q = p;
+        assert_eq!(
+            pqp_signed_distance(q.as_mut_ptr(), I.as_ptr(), O.as_ptr(), m, q.as_ptr()),
+            PQP_OK
+        );
+        assert_eq!(q[0], 3.0);
+        assert_eq!(
+            pqp_closest_point(null_mut(), I.as_ptr(), O.as_ptr(), m, p.as_ptr(), 1.0),
+            PQP_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            pqp_signed_distance(&mut sd, I.as_ptr(), O.as_ptr(), null(), p.as_ptr()),
+            PQP_ERR_NULL_POINTER
+        );
+        let empty = pqp_model_create();
+        assert_eq!(
+            pqp_signed_distance(&mut sd, I.as_ptr(), O.as_ptr(), empty, p.as_ptr()),
+            PQP_ERR_UNPROCESSED_MODEL
+        );
+        assert_eq!(sd, 3.0);
+        pqp_model_destroy(empty);
+        pqp_model_destroy(m);
+    }
+}

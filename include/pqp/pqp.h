@@ -422,6 +422,24 @@ typedef struct pqp_search_options {
     int triangle_cache;
 } pqp_search_options;
 
+/**
+ * The answer of pqp_closest_point.
+ */
+typedef struct pqp_point_result {
+    /**
+     * Distance from the point to the posed model; INFINITY if beyond max_distance.
+     */
+    double distance;
+    /**
+     * Closest point of the model, world coordinates; NaN (all three) if beyond max_distance.
+     */
+    double point[3];
+    /**
+     * Caller's id of the triangle holding it; -1 if beyond max_distance.
+     */
+    int triangle;
+} pqp_point_result;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1360,6 +1378,72 @@ int pqp_within_distance(struct pqp_collide_result *r,
                         const double *T2,
                         const struct pqp_model *m2,
                         double tolerance);
+
+/**
+ * Finds the closest point of a posed model to a point, if within max_distance.
+ *
+ * The point is carried into the model's frame by the inverse pose (R taken as a rotation), the
+ * closest point of the model's triangles found there exactly (the exact point-triangle distance,
+ * degenerate triangles counting as the segment or point they span) by a search of the model's
+ * bounding-volume hierarchy that max_distance prunes, and carried back to world coordinates.
+ * When several triangles are equally close, one of them is reported, always the same for the
+ * same model, pose and point.
+ *
+ * @param out           where the answer is written. Beyond max_distance (the model is farther
+ *                      than it from the point): distance INFINITY, point NaN, triangle -1. A
+ *                      model exactly at max_distance is within it.
+ * @param R, T          the model's pose (as for pqp_distance).
+ * @param m             the model (built).
+ * @param point         the point, 3 doubles, world coordinates.
+ * @param max_distance  the largest distance of interest, >= 0; INFINITY for no limit. Smaller
+ *                      values make the search faster.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
+ *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
+ *         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
+ *         internal fault. On an error nothing is written. out may overlap the inputs.
+ * Thread safety: any number of queries may use the same model at once from different threads.
+ */
+int pqp_closest_point(struct pqp_point_result *out,
+                      const double *R,
+                      const double *T,
+                      const struct pqp_model *m,
+                      const double *point,
+                      double max_distance);
+
+/**
+ * Computes the signed distance from a point to a posed model: its distance, negative when the
+ * point is inside the model.
+ *
+ * Inside is decided by the generalized winding number w of the model about the point: the signed
+ * solid angle its triangles subtend there over 4 pi, a triangle counting positively when the
+ * point is behind it (its normal (p2 - p1) x (p3 - p1) pointing away). The point is inside when
+ * |w| >= 1/2. For a closed mesh w is 0 outside and 1 or -1 inside (triangles facing out or in),
+ * so either orientation gives the expected sign; for an open or self-intersecting mesh w varies
+ * smoothly and inside is where the surface wraps the point at least half way round (for an open
+ * hemisphere, the points near its centre). A point on the surface has distance 0. w is computed
+ * hierarchically (near the point from triangles, away from it from each bounding-volume node's
+ * boundary edges), in about logarithmic time per query; the first signed distance on a model
+ * computes those edges and keeps them in the model (pqp_model_memory_usage counts them).
+ *
+ * @param out    where the signed distance is written (1 double).
+ * @param R, T   the model's pose (as for pqp_distance).
+ * @param m      the model (built).
+ * @param point  the point, 3 doubles, world coordinates.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
+ *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
+ *         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
+ *         the inputs.
+ * Thread safety: any number of queries may use the same model at once from different threads
+ *                (the first ones on a model may each compute its boundary edges; one is kept).
+ */
+int pqp_signed_distance(double *out,
+                        const double *R,
+                        const double *T,
+                        const struct pqp_model *m,
+                        const double *point);
 
 /**
  * Creates a convex model: the convex hull of a point set.

@@ -116,6 +116,7 @@ impl Bvh {
             collision,
             scale,
             tiny,
+            boundary: std::sync::OnceLock::new(),
         })
     }
 }

@@ -13,11 +13,13 @@
 //! array in which equal vertices are stored once, in leaf order so that a subtree's triangles are
 //! contiguous.
 
+mod boundary;
 mod build;
 mod pqp_view;
 mod refit;
 mod volume_choice;
 
+pub(crate) use boundary::{Boundaries, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
 pub use volume_choice::{CollisionVolume, VolumeKind};
@@ -27,6 +29,7 @@ use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::{RESCALE_HI, RESCALE_LO};
 use crate::math::{Mat3, RelPose, Vec3, frame_from};
+use std::sync::OnceLock;
 
 /// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
 /// hold in their stacks and queues; they ask the [`Bvh`] for its volumes, its children and its
@@ -215,6 +218,9 @@ pub(crate) struct Bvh {
     /// Some triangle has every coordinate below `RESCALE_LO` in magnitude: a triangle test against
     /// it may need rescaling (see [`in_kernel_range`](Bvh::in_kernel_range)).
     pub tiny: bool,
+    /// Each inner node's boundary edges, for the winding number: computed on first use
+    /// ([`Bvh::boundaries`]), so a model that never asks for one does not hold them.
+    pub boundary: OnceLock<Boundaries>,
 }
 
 impl Bvh {
@@ -261,6 +267,8 @@ impl Bvh {
             collision: self.collision,
             scale: self.scale,
             tiny: self.tiny,
+            // Rebuilt on use by the copy if it needs them.
+            boundary: OnceLock::new(),
         })
     }
 
@@ -271,7 +279,25 @@ impl Bvh {
             + self.faces.capacity() * std::mem::size_of::<[u32; 3]>()
             + self.ids.capacity() * std::mem::size_of::<i32>()
             + self.added.capacity() * std::mem::size_of::<u32>()
+            + self.boundary.get().map_or(0, Boundaries::memory_usage)
             + std::mem::size_of::<Bvh>()
+    }
+
+    /// Each inner node's boundary (see [`Boundaries`]), computed on the first call (by any
+    /// thread; concurrent first calls may each compute it, one result is kept), or
+    /// `Err(OutOfMemory)` if it cannot be allocated.
+    pub fn boundaries(&self) -> Result<&Boundaries, Error> {
+        if let Some(b) = self.boundary.get() {
+            return Ok(b);
+        }
+        let b = Boundaries::build(self)?;
+        Ok(self.boundary.get_or_init(|| b))
+    }
+
+    /// Vertex `i` (an index of [`Boundaries`]' edges).
+    #[inline(always)]
+    pub fn vertex(&self, i: u32) -> Vec3 {
+        self.verts[i as usize]
     }
 
     /// Number of triangles.

@@ -40,6 +40,9 @@ impl Bvh {
         drop(corners);
         self.verts = verts;
         self.faces = faces;
+        // The winding number's boundary edges index the vertices shared at the last build or refit:
+        // made again on the next signed distance.
+        self.boundary = std::sync::OnceLock::new();
 
         let kind = match volume {
             VolumeKind::Pss => Some(SsvKind::Point),

@@ -40,6 +40,8 @@ mod distance;
 mod tolerance;
 // Pairs within a distance.
 mod within_distance;
+// Point queries: closest point, signed distance.
+mod point;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -54,6 +56,7 @@ pub use geometry::*;
 pub use legacy::*;
 pub use misc::*;
 pub use model::*;
+pub use point::*;
 pub use refit::*;
 pub use self_collide::*;
 pub use tolerance::*;

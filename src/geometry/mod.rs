@@ -8,12 +8,14 @@ mod big_int;
 mod point_triangle;
 pub(crate) mod predicates;
 mod segment_segment;
+mod solid_angle;
 mod tri_distance;
 mod tri_overlap;
 
 pub use point_triangle::point_triangle;
 pub(crate) use predicates::{RESCALE_HI, RESCALE_LO};
 pub use segment_segment::{segment_segment, segment_segment_dir};
+pub(crate) use solid_angle::{SolidAngleSum, solid_angle};
 pub use tri_distance::tri_distance;
 pub(crate) use tri_distance::{Near, Plane, tri_distance_below};
 pub use tri_overlap::tri_overlap;

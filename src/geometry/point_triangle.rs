@@ -6,8 +6,16 @@ use crate::math::Vec3;
 /// Closest point of triangle `t` to point `p`: `ClosestPoints { p: *p, q: on the triangle, .. }`.
 ///
 /// A triangle with collinear vertices is treated as the segment they span, one with equal vertices
-/// as that point.
+/// as that point. A point equal to a vertex is at distance 0 exactly (the plane's distance,
+/// computed from a rounded normal, could leave a few ulps of the triangle's size).
 pub fn point_triangle(p: &Vec3, t: &Tri) -> ClosestPoints {
+    if t.contains(p) {
+        return ClosestPoints {
+            distance: 0.0,
+            p: *p,
+            q: *p,
+        };
+    }
     if let Some(k) = kernel_rescale(max_abs(&[p, &t[0], &t[1], &t[2]])) {
         let (s, inv) = (pow2(k), pow2(-k));
         let r = point_triangle(&(p * s), &[t[0] * s, t[1] * s, t[2] * s]);

@@ -11,24 +11,28 @@ mod distance;
 mod front;
 #[cfg(test)]
 mod layering_tests;
+mod point;
 mod queue;
 pub(crate) mod search;
 mod self_collide;
 mod strategy;
 mod tolerance;
 mod traversal;
+mod winding;
 mod within_distance;
 
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
+pub use point::{PointResult, closest_point, signed_distance};
 pub use self_collide::{self_collide, self_collide_into, self_contact};
 pub use strategy::{Search, Strategy};
 pub use tolerance::{ToleranceResult, tolerance, tolerance_into};
+pub use winding::winding_number;
 pub use within_distance::{within_distance, within_distance_into};
 
 use crate::bvh::Bvh;
-use crate::error::Error;
-use crate::math::{Pose, RelPose};
+use crate::error::{Error, MAX_COORDINATE};
+use crate::math::{Pose, RelPose, Vec3};
 use crate::model::Model;
 
 /// Work counters and time of one query.
@@ -88,4 +92,26 @@ fn prepare<'a>(
     pose1.validate()?;
     pose2.validate()?;
     Ok((b1, b2, RelPose::between(pose1, pose2)))
+}
+
+/// Checks what every point query needs: the hierarchy of a built model, and the point carried into
+/// its frame.
+fn prepare_point<'a>(
+    model: &'a Model,
+    pose: &Pose,
+    point: &Vec3,
+) -> Result<(&'a Bvh, Vec3), Error> {
+    let bvh = model.bvh()?;
+    pose.validate()?;
+    if !point
+        .iter()
+        .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+    {
+        return Err(Error::NonFiniteCoordinate);
+    }
+    let to_world = RelPose {
+        rot: pose.rotation,
+        trans: pose.translation,
+    };
+    Ok((bvh, to_world.apply_inverse(point)))
 }

@@ -1,0 +1,178 @@
+//! Point queries: the closest point of a posed model to a point, and the signed distance (negative
+//! inside, by the winding number of `winding.rs`).
+//!
+//! Both work in the model's frame: the point is carried there by the inverse pose (the rotation
+//! taken as orthonormal), and the answer carried back.
+
+use super::prepare_point as prepare;
+use super::queue::RadixQueue;
+use super::traversal::NodePair;
+use super::winding::winding_at;
+use crate::bounding_volume::Ssv;
+use crate::bvh::{Bvh, NodeKind, NodeRef};
+use crate::error::Error;
+use crate::geometry::point_triangle;
+use crate::math::{Pose, RelPose, Vec3, most};
+use crate::model::Model;
+use std::cell::RefCell;
+
+/// The answer of [`closest_point`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointResult {
+    /// Distance from the point to the posed model; `INFINITY` if it exceeds the `max_distance`
+    /// asked for.
+    pub distance: f64,
+    /// The closest point of the model, in world coordinates; NaN in every coordinate if the
+    /// model is beyond `max_distance`.
+    pub point: Vec3,
+    /// The caller's id of the triangle holding it (one of the closest triangles when several are:
+    /// always the same one for the same model, pose and point); `None` beyond `max_distance`.
+    pub triangle: Option<i32>,
+}
+
+/// The closest point of `model` posed by `pose` to `point` (world coordinates), if it lies within
+/// `max_distance` (which may be infinite).
+///
+/// Exact: the distance is that of the exact point-triangle routine to the nearest triangle, found
+/// by a priority-directed descent of the hierarchy (the node of least distance bound first),
+/// pruned by the swept sphere volumes' distance bounds and by the best distance so far
+/// (`max_distance` to start with).
+/// Degenerate triangles count as the segment or point they span.
+///
+/// Errors: `UnprocessedModel` (not built), `NonFinitePose`, `NonFiniteCoordinate` (a coordinate
+/// of `point` NaN, infinite or beyond 1e150 in magnitude), `InvalidArgument` (`max_distance`
+/// negative or NaN).
+///
+/// ```
+/// use pqp::{Model, Pose, Vec3, closest_point};
+/// let m = Model::from_triangles([([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 7)]).unwrap();
+/// let r = closest_point(&m, &Pose::identity(), &Vec3::new(0.2, 0.2, 3.0), f64::INFINITY).unwrap();
+/// assert_eq!((r.distance, r.triangle), (3.0, Some(7)));
+/// assert_eq!(r.point, Vec3::new(0.2, 0.2, 0.0));
+/// ```
+pub fn closest_point(
+    model: &Model,
+    pose: &Pose,
+    point: &Vec3,
+    max_distance: f64,
+) -> Result<PointResult, Error> {
+    if max_distance.is_nan() || max_distance < 0.0 {
+        return Err(Error::InvalidArgument);
+    }
+    let (bvh, p) = prepare(model, pose, point)?;
+    Ok(match nearest(bvh, &p, max_distance) {
+        Some(c) => PointResult {
+            distance: c.distance,
+            point: pose.transform_point(&c.q),
+            triangle: Some(bvh.ids[c.slot]),
+        },
+        None => PointResult {
+            distance: f64::INFINITY,
+            point: Vec3::repeat(f64::NAN),
+            triangle: None,
+        },
+    })
+}
+
+/// The signed distance from `point` (world coordinates) to `model` posed by `pose`: the distance,
+/// negated when the point is inside, that is when the model's generalized winding number about
+/// it ([`winding_number`](super::winding_number)) is at least 1/2 in magnitude. Exact for closed
+/// meshes of either orientation; for open or self-intersecting ones, inside is where the surface
+/// wraps the point at least half way round. A point on the surface has distance 0.
+///
+/// Errors as [`closest_point`], and `OutOfMemory` if the per-node data of the winding number,
+/// computed on the model's first signed distance, cannot be allocated.
+///
+/// ```
+/// use pqp::{Model, Pose, Vec3, signed_distance};
+/// // A tetrahedron, its faces outwards.
+/// let v = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+/// let m = Model::from_triangles(faces.iter().map(|f| (v[f[0]], v[f[1]], v[f[2]], 0))).unwrap();
+/// let here = Pose::identity();
+/// assert_eq!(signed_distance(&m, &here, &Vec3::new(0.1, 0.1, 0.2)).unwrap(), -0.1);
+/// assert_eq!(signed_distance(&m, &here, &Vec3::new(0.1, 0.1, -0.5)).unwrap(), 0.5);
+/// ```
+pub fn signed_distance(model: &Model, pose: &Pose, point: &Vec3) -> Result<f64, Error> {
+    let (bvh, p) = prepare(model, pose, point)?;
+    let d = nearest(bvh, &p, f64::INFINITY).map_or(f64::INFINITY, |c| c.distance);
+    if d == 0.0 {
+        return Ok(0.0);
+    }
+    let w = winding_at(bvh, &p)?;
+    Ok(if w.abs() >= 0.5 { -d } else { d })
+}
+
+/// A closest triangle found: its slot in leaf order, distance and closest point (model frame).
+struct Nearest {
+    slot: usize,
+    distance: f64,
+    q: Vec3,
+}
+
+thread_local! {
+    /// The queue of the closest-point search, one per thread and reused from query to query (its
+    /// buckets keep their capacity), so that only a thread's first query allocates.
+    static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
+}
+
+/// The nearest triangle to `p` (model frame) within `max_distance`, if any: the first found at the
+/// least distance by a priority-directed descent, the node of least bound first (of equal bounds,
+/// the last queued), so that no node whose bound exceeds the final distance is opened.
+fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
+    // Every bound below is a distance computed from p and a volume: its rounding is within the
+    // allowance of a bound between volumes of the model's scale and the point's.
+    let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
+    let mut best: Option<Nearest> = None;
+    let mut cutoff = max_distance;
+    let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let c = point_triangle(p, &bvh.tri(t));
+        // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
+        // equally near triangles.
+        if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
+            *cutoff = c.distance;
+            *best = Some(Nearest {
+                slot: t,
+                distance: c.distance,
+                q: c.q,
+            });
+        }
+    };
+    let root = bvh.root();
+    if let NodeKind::Leaf(t) = root.kind() {
+        leaf(t, &mut cutoff, &mut best);
+        return best;
+    }
+    QUEUE.with(|q| {
+        // A query never calls another while it holds the queue, so the borrow cannot fail.
+        let mut queue = q.borrow_mut();
+        queue.clear();
+        queue.push(entry(root, 0.0));
+        while let Some(NodePair { a: r, bound, .. }) = queue.pop() {
+            if bound > cutoff {
+                break;
+            }
+            for c in bvh.children(r) {
+                match c.kind() {
+                    NodeKind::Leaf(t) => leaf(t, &mut cutoff, &mut best),
+                    NodeKind::Inner(_) => {
+                        // Raised to the parent's (which bounds the child's triangles too): the
+                        // queue takes no key below the last popped, nor a negative one.
+                        let v = bvh.inner_ssv(c).full();
+                        let b = most(v.core_distance(p) - v.radius - slack, bound);
+                        if b <= cutoff {
+                            queue.push(entry(c, b));
+                        }
+                    }
+                }
+            }
+        }
+    });
+    best
+}
+
+/// A queue entry: node `r` with the lower bound `bound` on its distance.
+#[inline(always)]
+fn entry(r: NodeRef, bound: f64) -> NodePair {
+    NodePair { a: r, b: r, bound }
+}
