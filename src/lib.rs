@@ -59,6 +59,6 @@ pub use math::{Pose, RelPose, Vec3};
 pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
     CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, Search, Stats,
-    Strategy, ToleranceResult, collide, collide_into, distance, distance_into, tolerance,
-    tolerance_into,
+    Strategy, ToleranceResult, collide, collide_batch, collide_into, distance, distance_batch,
+    distance_into, tolerance, tolerance_batch, tolerance_into,
 };

@@ -34,6 +34,8 @@ mod collide;
 mod distance;
 // Tolerance.
 mod tolerance;
+// Batches of collision, distance and tolerance queries on several threads.
+mod batch;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -41,6 +43,7 @@ mod geometry;
 // Error texts and version.
 mod misc;
 
+pub use batch::*;
 pub use collide::*;
 pub use convex::*;
 pub use distance::*;
