@@ -39,6 +39,11 @@ fn threads_share_models() {
 }
 
 #[test]
+fn batch_queries_from_c() {
+    c_program("batch");
+}
+
+#[test]
 fn pqp_view_of_a_model_from_c() {
     c_program("legacy_view");
 }
