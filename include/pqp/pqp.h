@@ -1279,8 +1279,8 @@ double pqp_tolerance_result_query_time_secs(const struct pqp_tolerance_result *r
  * @param m2         model 2 (built; may be the same model as m1).
  * @param flag       PQP_ALL_CONTACTS or PQP_FIRST_CONTACT (the same verdicts).
  * @param threads    the number of threads to answer on, the calling thread included: 0 for every
- *                   available core; any value is valid and is capped to the available cores and
- *                   to n. With 1 no thread is started.
+ *                   available core (counted once per process); any value is valid and is capped
+ *                   to the available cores and to n. With 1 no thread is started.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL (n > 0); PQP_ERR_INVALID_ARGUMENT
  *         if flag is neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT, or if n is too large for
  *         R1 to be an array (9 n doubles beyond the address space); PQP_ERR_OUT_OF_MEMORY if the

@@ -19,15 +19,16 @@ use crate::math::Pose;
 use crate::model::Model;
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 /// Whether `m1` at `poses[i].0` and `m2` at `poses[i].1` collide, for each `i`: the verdict of
 /// [`collide`](super::collide) at each pose pair (a batch stops at the first contact of each pair,
 /// which decides the verdict).
 ///
-/// `threads` is the number of threads to answer on: 0 for all available cores
-/// ([`std::thread::available_parallelism`]); any value is valid, and it is capped to the available
-/// cores and to the number of pose pairs. With 1 the batch runs on the calling thread alone.
+/// `threads` is the number of threads to answer on, the calling thread included: 0 for all
+/// available cores ([`std::thread::available_parallelism`], asked once per process); any value is
+/// valid, and it is capped to the available cores and to the number of pose pairs. With 1 the
+/// batch runs on the calling thread alone.
 ///
 /// Checked first, as [`collide`](super::collide) checks them: both models built
 /// (`Err(UnprocessedModel)`), then every pose (`Err(NonFinitePose)`). An empty `poses` answers an
@@ -115,7 +116,7 @@ impl Workers {
         if n <= 1 || self.threads == 1 {
             return 1;
         }
-        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cores = cores();
         let asked = if self.threads == 0 {
             cores
         } else {
@@ -123,6 +124,14 @@ impl Workers {
         };
         asked.min(n).max(1)
     }
+}
+
+/// The available cores ([`std::thread::available_parallelism`]), asked once per process: the
+/// question reads the scheduler's affinity and the cgroup's quota (about 0.1 ms, more than many
+/// queries take).
+fn cores() -> usize {
+    static CORES: OnceLock<usize> = OnceLock::new();
+    *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |c| c.get()))
 }
 
 /// [`collide_batch`] with the C ABI's choice of workers.
@@ -357,7 +366,7 @@ mod tests {
 
     #[test]
     fn threads_are_capped_by_cores_and_queries() {
-        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cores = cores();
         assert_eq!(workers(0).count(1000), cores);
         assert_eq!(workers(1000).count(1000), cores);
         assert_eq!(workers(1).count(1000), 1);
@@ -368,7 +377,7 @@ mod tests {
 
     #[test]
     fn several_threads_share_the_work() {
-        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cores = cores();
         if cores < 2 {
             return;
         }
@@ -422,7 +431,7 @@ mod tests {
                 },
             )
         });
-        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cores = cores();
         if cores >= 2 {
             let payload = caught.expect_err("the worker's panic is resumed");
             assert_eq!(payload.downcast_ref::<&str>(), Some(&"worker bug"));
