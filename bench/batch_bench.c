@@ -18,6 +18,7 @@
 #include <pqp/pqp.h>
 
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,12 +47,18 @@ struct workload {
     double tolerance;
 };
 
-static double now(void)
+static double clock_seconds(clockid_t clock)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(clock, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+
+/* Wall-clock seconds. */
+static double now(void) { return clock_seconds(CLOCK_MONOTONIC); }
+
+/* CPU seconds of the whole process (every thread). */
+static double cpu_now(void) { return clock_seconds(CLOCK_PROCESS_CPUTIME_ID); }
 
 static FILE *open_in(const char *dir, const char *file)
 {
@@ -218,6 +225,43 @@ static int run_batch(const struct workload *w, enum query q, unsigned threads, d
     return rc;
 }
 
+static double median(double *v, int n);
+
+/* Where the spin loops leave their results, so that the compiler keeps them. */
+static volatile uint64_t spin_sink;
+
+/* A CPU-bound loop with no memory traffic: what two threads can gain on this machine right now. */
+static void *spin(void *arg)
+{
+    uint64_t x = 1, i, n = *(const uint64_t *)arg;
+    for (i = 0; i < n; i++) x = x * 6364136223846793005ull + i;
+    *(uint64_t *)arg = x;
+    return NULL;
+}
+
+/* The speed-up of the spin loop split on 2 threads over 1 thread (median of 3): a control for the
+ * batches' speed-up, since other processes share the cores. */
+static double machine_scaling(void)
+{
+    double r[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        uint64_t whole = 100000000, half1 = whole / 2, half2 = whole / 2;
+        pthread_t t;
+        double start = now(), one, two;
+        spin(&whole);
+        one = now() - start;
+        start = now();
+        if (pthread_create(&t, NULL, spin, &half1) != 0) return 0;
+        spin(&half2);
+        pthread_join(t, NULL);
+        two = now() - start;
+        spin_sink = whole ^ half1 ^ half2;
+        r[k] = one / two;
+    }
+    return median(r, 3);
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -236,7 +280,7 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
     double *single = (double *)malloc(w->n * sizeof(double));
     double *batch = (double *)malloc(w->n * sizeof(double));
     int *ints = (int *)malloc(w->n * sizeof(int));
-    double t[3][MAX_ROUNDS], med[3];
+    double t[3][MAX_ROUNDS], cpu[3][MAX_ROUNDS], med[3], cpu_med[3];
     const unsigned threads[3] = {0, 1, 2}; /* index 0: single calls */
     size_t i, mismatches = 0, positive = 0;
     int r, k;
@@ -244,7 +288,7 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
         for (k = 0; k < 3; k++) {
             /* Alternate the order between rounds, so that no variant always runs first. */
             int v = (r % 2) ? 2 - k : k;
-            double start = now();
+            double start = now(), cpu_start = cpu_now();
             if (v == 0) {
                 run_single(w, q, single);
             } else if (run_batch(w, q, threads[v], batch, ints) != PQP_OK) {
@@ -252,6 +296,7 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
                 exit(1);
             }
             t[v][r] = now() - start;
+            cpu[v][r] = cpu_now() - cpu_start;
             /* Reused results answer approximate queries otherwise (within the same bounds). */
             if (v != 0 && q != APPROX_REUSED)
                 for (i = 0; i < w->n; i++) mismatches += batch[i] != single[i];
@@ -259,10 +304,14 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
     }
     /* The single calls ran first in round 0: `single` holds their answers from then on. */
     for (i = 0; i < w->n; i++) positive += single[i] > 0;
-    for (k = 0; k < 3; k++) med[k] = median(t[k], rounds);
-    printf("| %s | %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2fx | %.2fx |\n", w->name,
+    for (k = 0; k < 3; k++) {
+        med[k] = median(t[k], rounds);
+        cpu_med[k] = median(cpu[k], rounds);
+    }
+    printf("| %s | %s | %zu | %.2f | %.2f | %.2f | %.2fx | %.2fx | %.3f | %.3f |\n", w->name,
            query_name[q], positive, 1e6 * med[0] / (double)w->n, 1e6 * med[1] / (double)w->n,
-           1e6 * med[2] / (double)w->n, 1e3 * med[0], med[0] / med[1], med[0] / med[2]);
+           1e6 * med[2] / (double)w->n, med[0] / med[1], med[0] / med[2],
+           cpu_med[1] / cpu_med[0], cpu_med[2] / cpu_med[0]);
     free(single);
     free(batch);
     free(ints);
@@ -310,13 +359,19 @@ int main(int argc, char **argv)
         return 1;
     }
 
-    printf("%d rounds, median; us per query; ratio: n single calls / the batch\n\n", rounds);
+    printf("control before: a CPU-bound loop on 2 threads runs %.2fx faster than on 1\n",
+           machine_scaling());
+    printf("%d rounds, median; wall-clock us per query; speed-up: time of the n single calls / "
+           "time of the batch; CPU: the process's CPU time for the batch / for the single calls\n\n",
+           rounds);
     printf("| workload | query | answers > 0 | single us | batch 1 thread us | batch 2 threads us "
-           "| single ms (n) | single / batch 1 | single / batch 2 |\n");
-    printf("|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+           "| speed-up 1 thread | speed-up 2 threads | CPU 1 thread | CPU 2 threads |\n");
+    printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (k = 0; k < 2; k++)
         for (q = 0; q < NUM_QUERIES; q++) mismatches += bench_query(&w[k], (enum query)q, rounds);
     printf("\nanswers differing between the batches and single calls: %zu\n", mismatches);
+    printf("control after: a CPU-bound loop on 2 threads runs %.2fx faster than on 1\n",
+           machine_scaling());
     for (k = 0; k < 2; k++) {
         pqp_model_destroy(w[k].m1);
         pqp_model_destroy(w[k].m2);
