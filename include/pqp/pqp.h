@@ -1262,7 +1262,7 @@ double pqp_tolerance_result_query_time_secs(const struct pqp_tolerance_result *r
 
 /**
  * Answers the collision query of pqp_collide at each of n pose pairs of the same two models, on
- * several threads: colliding[i] is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i)
+ * several threads: `colliding[i]` is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i)
  * collide, else 0.
  *
  * Poses are as for pqp_collide, one after the other: R1 holds n rotations of 9 doubles (query i
@@ -1305,7 +1305,7 @@ int pqp_collide_batch(int *colliding,
 
 /**
  * Answers the distance query of pqp_distance at each of n pose pairs of the same two models, on
- * several threads: distance[i] is the separation distance of m1 at (R1 + 9 i, T1 + 3 i) and m2 at
+ * several threads: `distance[i]` is the separation distance of m1 at (R1 + 9 i, T1 + 3 i) and m2 at
  * (R2 + 9 i, T2 + 3 i), 0 where they touch or overlap.
  *
  * Poses are laid out as for pqp_collide_batch. Each answer is, bit for bit, what pqp_distance with
@@ -1347,7 +1347,7 @@ int pqp_distance_batch(double *distance,
 
 /**
  * Answers the tolerance query of pqp_tolerance at each of n pose pairs of the same two models, on
- * several threads: closer[i] is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i) are
+ * several threads: `closer[i]` is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i) are
  * within tolerance of each other, else 0.
  *
  * Poses are laid out as for pqp_collide_batch; the verdicts are those of n calls of pqp_tolerance
