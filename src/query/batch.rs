@@ -9,6 +9,10 @@
 //! consecutive poses are answered by the same thread. Each thread keeps its own result object, whose
 //! triangle cache (and, for exact distance, BVTT front) carries over from one pose to the next, as it
 //! would for a caller reusing one result for a sequence of single queries.
+//!
+//! The threads are scoped std threads, started per batch: a batch is one fork-join over a slice,
+//! which they express directly (the threads borrow the models, the poses and disjoint answer
+//! slices), and starting one costs tens of microseconds against milliseconds of queries.
 
 use super::{
     CollideResult, ContactMode, DistanceOptions, DistanceResult, Search, ToleranceResult,
