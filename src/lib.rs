@@ -59,7 +59,8 @@ pub use math::{Pose, RelPose, Vec3};
 pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
 pub use query::{
     CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, PointResult, Search,
-    Stats, Strategy, ToleranceResult, closest_point, collide, collide_into, distance,
-    distance_into, self_collide, self_collide_into, signed_distance, tolerance, tolerance_into,
-    winding_number, within_distance, within_distance_into,
+    Stats, Strategy, ToleranceResult, closest_point, collide, collide_batch, collide_into,
+    distance, distance_batch, distance_into, self_collide, self_collide_into, signed_distance,
+    tolerance, tolerance_batch, tolerance_into, winding_number, within_distance,
+    within_distance_into,
 };

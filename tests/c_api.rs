@@ -49,6 +49,11 @@ fn point_queries_from_c() {
 }
 
 #[test]
+fn batch_queries_from_c() {
+    c_program("batch");
+}
+
+#[test]
 fn pqp_view_of_a_model_from_c() {
     c_program("legacy_view");
 }

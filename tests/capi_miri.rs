@@ -680,3 +680,68 @@ fn point_queries() {
         pqp_model_destroy(m);
     }
 }
+
+#[test]
+fn batch_queries_read_and_write_only_their_arrays() {
+    // Three poses of a triangle pair: overlapping, 0.5 apart, 2 apart; pose arrays exactly n long
+    // (Miri catches any read past them), answers compared with single calls.
+    let (a, b) = (model(&[tri(0.0)]), model(&[tri(0.0), tri(0.1)]));
+    let n = 3;
+    let mut r = Vec::new();
+    for _ in 0..n {
+        r.extend_from_slice(&I);
+    }
+    let t1 = vec![0.0; 3 * n];
+    let t2 = vec![0.2, 0.2, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 2.0];
+    unsafe {
+        for threads in [0, 1, 2] {
+            let mut hit = vec![-1 as c_int; n];
+            let mut gap = vec![-1.0; n];
+            let mut near = vec![-1 as c_int; n];
+            let (rp, t1p, t2p) = (r.as_ptr(), t1.as_ptr(), t2.as_ptr());
+            let rc = pqp_collide_batch(hit.as_mut_ptr(), n, rp, t1p, a, rp, t2p, b, 1, threads);
+            assert_eq!(rc, PQP_OK);
+            let rc = pqp_distance_batch(gap.as_mut_ptr(), n, rp, t1p, a, rp, t2p, b, 0.0, 0.0, 2);
+            assert_eq!(rc, PQP_OK);
+            let rc = pqp_tolerance_batch(near.as_mut_ptr(), n, rp, t1p, a, rp, t2p, b, 0.6, 2);
+            assert_eq!(rc, PQP_OK);
+            assert_eq!(hit, [1, 0, 0]);
+            assert_eq!(gap, [0.0, 0.5, 2.0]);
+            assert_eq!(near, [1, 1, 0]);
+        }
+        // A NaN in the last pose: nothing written; n = 0 with NULL pointers: nothing read.
+        let mut bad = t2.clone();
+        bad[8] = f64::NAN;
+        let mut hit = vec![-1 as c_int; n];
+        let rc = pqp_collide_batch(
+            hit.as_mut_ptr(),
+            n,
+            r.as_ptr(),
+            t1.as_ptr(),
+            a,
+            r.as_ptr(),
+            bad.as_ptr(),
+            b,
+            1,
+            2,
+        );
+        assert_eq!(rc, PQP_ERR_NONFINITE_POSE);
+        assert_eq!(hit, [-1; 3]);
+        let rc = pqp_distance_batch(
+            null_mut(),
+            0,
+            null(),
+            null(),
+            null(),
+            null(),
+            null(),
+            null(),
+            0.0,
+            0.0,
+            0,
+        );
+        assert_eq!(rc, PQP_OK);
+        pqp_model_destroy(a);
+        pqp_model_destroy(b);
+    }
+}

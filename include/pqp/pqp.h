@@ -1446,6 +1446,126 @@ int pqp_signed_distance(double *out,
                         const double *point);
 
 /**
+ * Answers the collision query of pqp_collide at each of n pose pairs of the same two models, on
+ * several threads: `colliding[i]` is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i)
+ * collide, else 0.
+ *
+ * Poses are as for pqp_collide, one after the other: R1 holds n rotations of 9 doubles (query i
+ * uses R1[9 i] to R1[9 i + 8]), T1 n translations of 3 doubles, and likewise R2 and T2. The
+ * verdicts are those of n calls of pqp_collide; flag is checked as there, but since only the
+ * verdict is returned every query stops at its first colliding pair, whatever the flag.
+ *
+ * @param colliding  n ints to fill with 1 (colliding) or 0.
+ * @param n          the number of queries; 0: nothing is read or written and PQP_OK is returned
+ *                   (every pointer may then be NULL).
+ * @param R1, T1     n rotations (9 doubles each) and n translations (3 doubles each) of model 1.
+ * @param m1         model 1 (built).
+ * @param R2, T2     n rotations and n translations of model 2.
+ * @param m2         model 2 (built; may be the same model as m1).
+ * @param flag       PQP_ALL_CONTACTS or PQP_FIRST_CONTACT (the same verdicts).
+ * @param threads    the number of threads to answer on, the calling thread included: 0 for every
+ *                   available core (counted once per process); any value is valid and is capped
+ *                   to the available cores and to n. With 1 no thread is started.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL (n > 0); PQP_ERR_INVALID_ARGUMENT
+ *         if flag is neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT, or if n is too large for
+ *         R1 to be an array (9 n doubles beyond the address space); PQP_ERR_OUT_OF_MEMORY if the
+ *         batch's working storage (about 200 bytes per query) could not be allocated;
+ *         PQP_ERR_UNPROCESSED_MODEL if a model is not built; PQP_ERR_NONFINITE_POSE if an entry
+ *         of any of the n poses is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_INTERNAL on an internal fault. Every argument and every pose is checked
+ *         before any query runs; on any error colliding is left unchanged.
+ * Thread safety: any number of calls may use the same models at once; colliding must not be
+ *                used by another thread during the call.
+ */
+int pqp_collide_batch(int *colliding,
+                      size_t n,
+                      const double *R1,
+                      const double *T1,
+                      const struct pqp_model *m1,
+                      const double *R2,
+                      const double *T2,
+                      const struct pqp_model *m2,
+                      int flag,
+                      unsigned int threads);
+
+/**
+ * Answers the distance query of pqp_distance at each of n pose pairs of the same two models, on
+ * several threads: `distance[i]` is the separation distance of m1 at (R1 + 9 i, T1 + 3 i) and m2 at
+ * (R2 + 9 i, T2 + 3 i), 0 where they touch or overlap.
+ *
+ * Poses are laid out as for pqp_collide_batch. Each answer is, bit for bit, what pqp_distance with
+ * a freshly created result returns for that pose pair (with the default search). Exact queries
+ * (abs_err or rel_err 0) keep each thread's triangle cache and BVTT front from one pose to the next,
+ * which cannot change an exact answer and makes consecutive nearby poses cheap; approximate ones
+ * search each pose pair from the root, because where a search starts decides which answer within
+ * the bounds it finds.
+ *
+ * @param distance  n doubles to fill with the distances.
+ * @param n         the number of queries; 0: nothing is read or written and PQP_OK is returned
+ *                  (every pointer may then be NULL).
+ * @param R1, T1    n rotations (9 doubles each) and n translations (3 doubles each) of model 1.
+ * @param m1        model 1 (built).
+ * @param R2, T2    n rotations and n translations of model 2.
+ * @param m2        model 2 (built; may be the same model as m1).
+ * @param rel_err   relative error allowed, >= 0 (as for pqp_distance).
+ * @param abs_err   absolute error allowed, >= 0 (0: exact).
+ * @param threads   as for pqp_collide_batch (0: every available core).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL (n > 0); PQP_ERR_INVALID_ARGUMENT
+ *         if rel_err or abs_err is negative or NaN, or n is too large (as for
+ *         pqp_collide_batch); PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL,
+ *         PQP_ERR_NONFINITE_POSE and PQP_ERR_INTERNAL as for pqp_collide_batch. Every argument
+ *         and every pose is checked before any query runs; on any error distance is left
+ *         unchanged.
+ * Thread safety: as pqp_collide_batch.
+ */
+int pqp_distance_batch(double *distance,
+                       size_t n,
+                       const double *R1,
+                       const double *T1,
+                       const struct pqp_model *m1,
+                       const double *R2,
+                       const double *T2,
+                       const struct pqp_model *m2,
+                       double rel_err,
+                       double abs_err,
+                       unsigned int threads);
+
+/**
+ * Answers the tolerance query of pqp_tolerance at each of n pose pairs of the same two models, on
+ * several threads: `closer[i]` is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i) are
+ * within tolerance of each other, else 0.
+ *
+ * Poses are laid out as for pqp_collide_batch; the verdicts are those of n calls of pqp_tolerance
+ * (default search).
+ *
+ * @param closer     n ints to fill with 1 (within the tolerance) or 0.
+ * @param n          the number of queries; 0: nothing is read or written and PQP_OK is returned
+ *                   (every pointer may then be NULL).
+ * @param R1, T1     n rotations (9 doubles each) and n translations (3 doubles each) of model 1.
+ * @param m1         model 1 (built).
+ * @param R2, T2     n rotations and n translations of model 2.
+ * @param m2         model 2 (built; may be the same model as m1).
+ * @param tolerance  the distance, >= 0 (+infinity is allowed).
+ * @param threads    as for pqp_collide_batch (0: every available core).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL (n > 0); PQP_ERR_INVALID_ARGUMENT
+ *         if tolerance is negative or NaN, or n is too large (as for pqp_collide_batch);
+ *         PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL, PQP_ERR_NONFINITE_POSE and
+ *         PQP_ERR_INTERNAL as for pqp_collide_batch. Every argument and every pose is checked
+ *         before any query runs; on any error closer is left unchanged.
+ * Thread safety: as pqp_collide_batch.
+ */
+int pqp_tolerance_batch(int *closer,
+                        size_t n,
+                        const double *R1,
+                        const double *T1,
+                        const struct pqp_model *m1,
+                        const double *R2,
+                        const double *T2,
+                        const struct pqp_model *m2,
+                        double tolerance,
+                        unsigned int threads);
+
+/**
  * Creates a convex model: the convex hull of a point set.
  *
  * The hull is exact: duplicate, coplanar and nearly coplanar points are fine (every decision is

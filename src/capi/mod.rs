@@ -42,6 +42,8 @@ mod tolerance;
 mod within_distance;
 // Point queries: closest point, signed distance.
 mod point;
+// Batches of collision, distance and tolerance queries on several threads.
+mod batch;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -49,6 +51,7 @@ mod geometry;
 // Error texts and version.
 mod misc;
 
+pub use batch::*;
 pub use collide::*;
 pub use convex::*;
 pub use distance::*;

@@ -46,7 +46,7 @@ impl DistanceOptions {
         }
     }
 
-    fn validate(&self) -> Result<(), Error> {
+    pub(crate) fn validate(&self) -> Result<(), Error> {
         if self.rel_err >= 0.0 && self.abs_err >= 0.0 {
             self.search.validate()
         } else {

@@ -6,6 +6,7 @@
 //! pair it found (the *triangle cache*), and the next query on the same two models starts from it.
 //! The cache lives in the result, never in the models, so models stay immutable and shareable.
 
+mod batch;
 mod collide;
 mod distance;
 mod front;
@@ -21,6 +22,10 @@ mod traversal;
 mod winding;
 mod within_distance;
 
+#[cfg(test)]
+pub(crate) use batch::answer_all;
+pub(crate) use batch::{Workers, collide_batch_with, distance_batch_with, tolerance_batch_with};
+pub use batch::{collide_batch, distance_batch, tolerance_batch};
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
 pub use point::{PointResult, closest_point, signed_distance};
