@@ -4,7 +4,7 @@
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
-use crate::geometry::{RESCALE_LO, Tri};
+use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
 use nalgebra::SymmetricEigen;
 
@@ -105,24 +105,7 @@ impl Bvh {
         drop(given_ids);
 
         let (verts, faces) = share_vertices(&corners)?;
-        let scale = Bvh::scale_bound(&nodes, &verts);
-        let tiny = faces.iter().any(|f| {
-            let m = f
-                .iter()
-                .map(|&i| verts[i as usize].amax())
-                .fold(0.0, f64::max);
-            m < RESCALE_LO
-        });
-        Ok(Bvh {
-            nodes,
-            verts,
-            faces,
-            ids,
-            added,
-            collision,
-            scale,
-            tiny,
-        })
+        Ok(Bvh::assemble(nodes, verts, faces, ids, added, collision))
     }
 }
 

@@ -15,6 +15,7 @@
 
 mod build;
 mod pqp_view;
+mod saved;
 mod volume_choice;
 
 pub(crate) use build::MAX_DEPTH;
@@ -23,8 +24,8 @@ pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
-use crate::geometry::RESCALE_HI;
 use crate::geometry::Tri;
+use crate::geometry::{RESCALE_HI, RESCALE_LO};
 use crate::math::{Mat3, RelPose, Vec3, frame_from};
 
 /// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
@@ -217,6 +218,36 @@ pub(crate) struct Bvh {
 }
 
 impl Bvh {
+    /// A hierarchy from its arrays, with what is derived from them (`scale`, `tiny`) computed:
+    /// how a build and a load both end.
+    fn assemble(
+        nodes: Vec<Node>,
+        verts: Vec<Vec3>,
+        faces: Vec<[u32; 3]>,
+        ids: Vec<i32>,
+        added: Vec<u32>,
+        collision: CollisionVolume,
+    ) -> Bvh {
+        let scale = Bvh::scale_bound(&nodes, &verts);
+        let tiny = faces.iter().any(|f| {
+            let m = f
+                .iter()
+                .map(|&i| verts[i as usize].amax())
+                .fold(0.0, f64::max);
+            m < RESCALE_LO
+        });
+        Bvh {
+            nodes,
+            verts,
+            faces,
+            ids,
+            added,
+            collision,
+            scale,
+            tiny,
+        }
+    }
+
     /// The bound kept in `scale`: the largest over the inner nodes, and five times the largest
     /// coordinate sum over the vertices (a leaf's corner is a vertex, its sides are at most twice
     /// the triangle's diameter, which is at most twice the largest vertex norm).
