@@ -105,7 +105,10 @@ impl Bvh {
         drop(given_ids);
 
         let (verts, faces) = share_vertices(&corners)?;
-        Ok(Bvh::assemble(nodes, verts, faces, ids, added, collision))
+        let inner = Bvh::inner_scale(&nodes);
+        Ok(Bvh::assemble(
+            nodes, verts, faces, ids, added, collision, inner,
+        ))
     }
 }
 

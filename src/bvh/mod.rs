@@ -219,7 +219,12 @@ pub(crate) struct Bvh {
 
 impl Bvh {
     /// A hierarchy from its arrays, with what is derived from them (`scale`, `tiny`) computed:
-    /// how a build and a load both end.
+    /// how a build and a load both end. `inner_scale` is [`Bvh::inner_scale`] of `nodes` (a load
+    /// computes it as it reads them).
+    ///
+    /// `scale` is the largest of `inner_scale` and five times the largest coordinate sum over the
+    /// vertices (a leaf's corner is a vertex, its sides are at most twice the triangle's
+    /// diameter, which is at most twice the largest vertex norm).
     fn assemble(
         nodes: Vec<Node>,
         verts: Vec<Vec3>,
@@ -227,8 +232,10 @@ impl Bvh {
         ids: Vec<i32>,
         added: Vec<u32>,
         collision: CollisionVolume,
+        inner_scale: f64,
     ) -> Bvh {
-        let scale = Bvh::scale_bound(&nodes, &verts);
+        let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
+        let scale = inner_scale.max(5.0 * vertex);
         let tiny = faces.iter().any(|f| {
             let m = f
                 .iter()
@@ -248,13 +255,10 @@ impl Bvh {
         }
     }
 
-    /// The bound kept in `scale`: the largest over the inner nodes, and five times the largest
-    /// coordinate sum over the vertices (a leaf's corner is a vertex, its sides are at most twice
-    /// the triangle's diameter, which is at most twice the largest vertex norm).
-    fn scale_bound(nodes: &[Node], verts: &[Vec3]) -> f64 {
-        let inner = nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max);
-        let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
-        inner.max(5.0 * vertex)
+    /// The largest scale of the inner nodes' swept sphere volumes (see [`Ssv::slack_for`]), 0
+    /// without inner nodes.
+    fn inner_scale(nodes: &[Node]) -> f64 {
+        nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max)
     }
 
     /// Whether every pair of a triangle of `self` and one of `other` posed by `rel` has its largest

@@ -52,27 +52,91 @@ const FRAME_TOLERANCE: f64 = 1e-6;
 /// different words, changes it; it runs at memory speed (a CRC or FNV-1a over bytes is 7-15x
 /// slower, which loading would feel).
 pub(crate) fn fletcher64(bytes: &[u8]) -> u64 {
+    let mut sum = Fletcher64::default();
+    sum.update(bytes);
+    sum.finish()
+}
+
+/// [`fletcher64`] taken piece by piece, so that a load sums each piece of the buffer while it
+/// reads it (one pass over the buffer, not two).
+#[derive(Default)]
+pub(crate) struct Fletcher64 {
+    a: u64,
+    b: u64,
+    /// Words added since the sums were last reduced.
+    words: usize,
+}
+
+impl Fletcher64 {
     const MODULUS: u64 = 0xffff_ffff;
-    // Words per block between reductions: `b` stays below 2^64 (it grows by at most `a`, itself
-    // below 2^32 times the block length, per word).
+    /// Words between reductions: `b` stays below 2^64 (it grows by at most `a`, itself below 2^32
+    /// times this, per word).
     const BLOCK: usize = 1 << 13;
-    let (mut a, mut b) = (0u64, 0u64);
-    for block in bytes.chunks(4 * BLOCK) {
-        let words = block.chunks_exact(4);
-        let tail = words.remainder();
-        for w in words {
-            a += u64::from(u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
-            b += a;
+
+    /// Adds `bytes`: a multiple of 4 long, except in the last piece (its tail is padded).
+    pub(crate) fn update(&mut self, bytes: &[u8]) {
+        let (mut a, mut b) = (self.a, self.b);
+        let mut rest = bytes;
+        while !rest.is_empty() {
+            let whole = (rest.len() / 4).min(Self::BLOCK - self.words);
+            let (head, tail) = rest.split_at(4 * whole);
+            // Eight words at a time: after words w0..w7, `a` has grown by their sum and `b` by
+            // eight times the old `a` plus 8 w0 + 7 w1 + ... + 1 w7 (independent sums the
+            // compiler vectorises).
+            let octets = head.chunks_exact(32);
+            let single = octets.remainder();
+            for o in octets {
+                let (mut s, mut t) = (0u64, 0u64);
+                for (k, w) in o.chunks_exact(4).enumerate() {
+                    let w = u64::from(u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
+                    s += w;
+                    t += (8 - k as u64) * w;
+                }
+                b += 8 * a + t;
+                a += s;
+            }
+            for w in single.chunks_exact(4) {
+                a += u64::from(u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
+                b += a;
+            }
+            self.words += whole;
+            rest = tail;
+            if whole == 0 {
+                let mut w = [0u8; 4];
+                w[..rest.len()].copy_from_slice(rest);
+                a += u64::from(u32::from_le_bytes(w));
+                b += a;
+                self.words += 1;
+                rest = &[];
+            }
+            if self.words == Self::BLOCK {
+                (a, b, self.words) = (a % Self::MODULUS, b % Self::MODULUS, 0);
+            }
         }
-        if !tail.is_empty() {
-            let mut w = [0u8; 4];
-            w[..tail.len()].copy_from_slice(tail);
-            a += u64::from(u32::from_le_bytes(w));
-            b += a;
-        }
-        (a, b) = (a % MODULUS, b % MODULUS);
+        (self.a, self.b) = (a, b);
     }
-    (b << 32) | a
+
+    /// The checksum of everything added.
+    pub(crate) fn finish(&self) -> u64 {
+        ((self.b % Self::MODULUS) << 32) | (self.a % Self::MODULUS)
+    }
+}
+
+/// Calls `read` on each `size`-byte record of a section, in order, adding each piece of 256
+/// records to `sum` just before they are read (while it is in cache); stops at the first error.
+fn for_records(
+    section: &[u8],
+    size: usize,
+    sum: &mut Fletcher64,
+    mut read: impl FnMut(&[u8]) -> Result<(), Error>,
+) -> Result<(), Error> {
+    for piece in section.chunks(256 * size) {
+        sum.update(piece);
+        for r in piece.chunks_exact(size) {
+            read(r)?;
+        }
+    }
+    Ok(())
 }
 
 /// The codes of the volume choices in the header (PQP_BV_* and PQP_COLLIDE_* of the C ABI).
@@ -252,10 +316,6 @@ impl Bvh {
         if u64_at(bytes, 32) != bytes.len() as u64 {
             return Err(bad);
         }
-        let (body, trailer) = bytes.split_at(bytes.len() - TRAILER);
-        if fletcher64(body) != u64_at(trailer, 0) {
-            return Err(bad);
-        }
         let volume = volume_from(u32_at(bytes, 12)).ok_or(bad)?;
         let collision = collision_from(u32_at(bytes, 16)).ok_or(bad)?;
         let (n, v) = (u32_at(bytes, 20), u32_at(bytes, 24));
@@ -274,7 +334,12 @@ impl Bvh {
         if expected != bytes.len() as u64 {
             return Err(bad);
         }
-        // Every section now fits in `body`: the counts are bounded by the buffer's length.
+        // Every section now fits: the counts are bounded by the buffer's length, and so is every
+        // allocation below. The checksum is taken as the sections are read, and compared before
+        // anything is made of them.
+        let (body, trailer) = bytes.split_at(bytes.len() - TRAILER);
+        let mut sum = Fletcher64::default();
+        sum.update(&body[..HEADER]);
         let mut rest = &body[HEADER..];
         let mut section = |size: u64| {
             let (s, r) = rest.split_at(size as usize);
@@ -282,37 +347,54 @@ impl Bvh {
             s
         };
         let [node_bytes, vert_bytes, face_bytes, id_bytes, added_bytes] = sizes.map(&mut section);
-        let nodes = read_nodes(node_bytes, volume)?;
-        check_tree(&nodes, n as usize)?;
-        let verts = read_verts(vert_bytes)?;
-        let faces = read_faces(face_bytes, v)?;
+        let (nodes, children, inner_scale) = read_nodes(node_bytes, volume, &mut sum)?;
+        let verts = read_verts(vert_bytes, &mut sum)?;
+        let faces = read_faces(face_bytes, v, &mut sum)?;
         let mut ids = with_room(n as usize)?;
-        ids.extend(id_bytes.chunks_exact(4).map(|w| u32_at(w, 0) as i32));
-        let added = read_added(added_bytes, n)?;
+        for_records(id_bytes, 4, &mut sum, |w| {
+            ids.push(u32_at(w, 0) as i32);
+            Ok(())
+        })?;
+        let added = read_added(added_bytes, n, &mut sum)?;
+        if sum.finish() != u64_at(trailer, 0) {
+            return Err(bad);
+        }
+        check_tree(&children, n as usize)?;
+        drop(children);
         Ok((
-            Bvh::assemble(nodes, verts, faces, ids, added, collision),
+            Bvh::assemble(nodes, verts, faces, ids, added, collision, inner_scale),
             volume,
         ))
     }
 }
 
+/// What [`read_nodes`] gives: the nodes, their children apart, and the largest scale of their
+/// swept sphere volumes ([`Bvh::inner_scale`]).
+type Nodes = (Vec<Node>, Vec<[NodeRef; 2]>, f64);
+
 /// The inner nodes, each checked on its own: values finite and within [`MAX_NODE_VALUE`], lengths,
 /// radius and half extents not negative, lengths as the model's volume kind allows, axes
-/// orthonormal. The children are checked by [`check_tree`].
-fn read_nodes(bytes: &[u8], volume: VolumeKind) -> Result<Vec<Node>, Error> {
+/// orthonormal. The children, also given apart for [`check_tree`] (a walk over them alone touches
+/// 8 bytes a node where the nodes are 160), are checked there.
+fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<Nodes, Error> {
     let mut nodes = with_room(bytes.len() / NODE)?;
-    for b in bytes.chunks_exact(NODE) {
-        let f = |k: usize| f64_at(b, 8 * k);
-        let vec = |k: usize| Vec3::new(f(k), f(k + 1), f(k + 2));
+    let mut children = with_room(bytes.len() / NODE)?;
+    let mut inner_scale = 0.0;
+    for_records(bytes, NODE, sum, |b| {
+        let mut f = [0.0f64; 18];
+        for (x, w) in f.iter_mut().zip(b.chunks_exact(8)) {
+            *x = f64_at(w, 0);
+        }
         // NaN fails the comparison too.
-        if !(0..18).all(|k| f(k).abs() <= MAX_NODE_VALUE) {
+        if !f.iter().all(|x| x.abs() <= MAX_NODE_VALUE) {
             return Err(Error::InvalidData);
         }
+        let vec = |k: usize| Vec3::new(f[k], f[k + 1], f[k + 2]);
         let ssv = CompactSsv {
             axes: [vec(0), vec(3)],
             origin: vec(6),
-            lengths: [f(9), f(10)],
-            radius: f(11),
+            lengths: [f[9], f[10]],
+            radius: f[11],
         };
         let (obb_center, obb_half) = (vec(12), vec(15));
         let [u, v] = ssv.axes;
@@ -333,30 +415,36 @@ fn read_nodes(bytes: &[u8], volume: VolumeKind) -> Result<Vec<Node>, Error> {
         if !valid {
             return Err(Error::InvalidData);
         }
+        let kids = [
+            NodeRef(u32_at(b, 144) as i32),
+            NodeRef(u32_at(b, 148) as i32),
+        ];
+        // As `Bvh::inner_scale` folds it.
+        inner_scale = f64::max(inner_scale, ssv.scale());
         nodes.push(Node {
             ssv_size: ssv.full().size(),
             ssv,
-            children: [
-                NodeRef(u32_at(b, 144) as i32),
-                NodeRef(u32_at(b, 148) as i32),
-            ],
+            children: kids,
             obb_center,
             obb_half,
         });
-    }
-    Ok(nodes)
+        children.push(kids);
+        Ok(())
+    })?;
+    Ok((nodes, children, inner_scale))
 }
 
-/// Checks that the nodes make the tree a build makes over `n` triangles (`nodes` holds `n - 1`):
+/// Checks that the inner nodes' `children` make the tree a build makes over `n` triangles (`n - 1`
+/// inner nodes):
 /// depth-first from the root, first child first, the leaves come in slot order `0, 1, ..., n - 1`,
 /// every inner child is in range, no more than `n - 1` inner nodes are visited, and no leaf is
 /// deeper than [`MAX_DEPTH`] (counting the root as 1). Since every inner node has two children,
 /// `n` leaves each met once make it a tree with each node reached exactly once (a node reached
 /// twice would show its leaves twice). O(n), and ends early on the first fault, so a crafted
 /// graph (cycles, shared nodes) costs no more.
-fn check_tree(nodes: &[Node], n: usize) -> Result<(), Error> {
-    debug_assert_eq!(nodes.len() + 1, n);
-    let root = if nodes.is_empty() {
+fn check_tree(children: &[[NodeRef; 2]], n: usize) -> Result<(), Error> {
+    debug_assert_eq!(children.len() + 1, n);
+    let root = if children.is_empty() {
         NodeRef::leaf(0)
     } else {
         NodeRef::inner(0)
@@ -380,10 +468,10 @@ fn check_tree(nodes: &[Node], n: usize) -> Result<(), Error> {
             }
             NodeKind::Inner(i) => {
                 inner_seen += 1;
-                if i >= nodes.len() || inner_seen > nodes.len() || len + 2 > stack.len() {
+                if i >= children.len() || inner_seen > children.len() || len + 2 > stack.len() {
                     return Err(Error::InvalidData);
                 }
-                let [c0, c1] = nodes[i].children;
+                let [c0, c1] = children[i];
                 stack[len] = (c1, depth + 1);
                 stack[len + 1] = (c0, depth + 1);
                 len += 2;
@@ -398,25 +486,26 @@ fn check_tree(nodes: &[Node], n: usize) -> Result<(), Error> {
 }
 
 /// The vertices: every coordinate finite and within [`MAX_COORDINATE`], as `add_triangle` accepts.
-fn read_verts(bytes: &[u8]) -> Result<Vec<Vec3>, Error> {
+fn read_verts(bytes: &[u8], sum: &mut Fletcher64) -> Result<Vec<Vec3>, Error> {
     let mut verts = with_room(bytes.len() / VERTEX)?;
-    for b in bytes.chunks_exact(VERTEX) {
+    for_records(bytes, VERTEX, sum, |b| {
         let p = Vec3::new(f64_at(b, 0), f64_at(b, 8), f64_at(b, 16));
         if !p.iter().all(|x| x.abs() <= MAX_COORDINATE) {
             return Err(Error::InvalidData);
         }
         verts.push(p);
-    }
+        Ok(())
+    })?;
     Ok(verts)
 }
 
 /// The triangles' vertex indices, in the build's order: the vertices are numbered as they first
 /// appear, so each index is at most one more than the largest before it, and every one of the `v`
 /// vertices is used.
-fn read_faces(bytes: &[u8], v: u32) -> Result<Vec<[u32; 3]>, Error> {
+fn read_faces(bytes: &[u8], v: u32, sum: &mut Fletcher64) -> Result<Vec<[u32; 3]>, Error> {
     let mut faces = with_room(bytes.len() / 12)?;
     let mut seen = 0u32;
-    for b in bytes.chunks_exact(12) {
+    for_records(bytes, 12, sum, |b| {
         let f = [u32_at(b, 0), u32_at(b, 4), u32_at(b, 8)];
         for k in f {
             if k > seen || k >= v {
@@ -425,7 +514,8 @@ fn read_faces(bytes: &[u8], v: u32) -> Result<Vec<[u32; 3]>, Error> {
             seen += u32::from(k == seen);
         }
         faces.push(f);
-    }
+        Ok(())
+    })?;
     if seen == v {
         Ok(faces)
     } else {
@@ -434,11 +524,11 @@ fn read_faces(bytes: &[u8], v: u32) -> Result<Vec<[u32; 3]>, Error> {
 }
 
 /// The insertion order: a permutation of `0..n`.
-fn read_added(bytes: &[u8], n: u32) -> Result<Vec<u32>, Error> {
+fn read_added(bytes: &[u8], n: u32, sum: &mut Fletcher64) -> Result<Vec<u32>, Error> {
     let mut seen: Vec<u64> = with_room((n as usize).div_ceil(64))?;
     seen.resize((n as usize).div_ceil(64), 0);
     let mut added = with_room(n as usize)?;
-    for b in bytes.chunks_exact(4) {
+    for_records(bytes, 4, sum, |b| {
         let k = u32_at(b, 0);
         if k >= n {
             return Err(Error::InvalidData);
@@ -449,7 +539,8 @@ fn read_added(bytes: &[u8], n: u32) -> Result<Vec<u32>, Error> {
         }
         seen[word] |= bit;
         added.push(k);
-    }
+        Ok(())
+    })?;
     Ok(added)
 }
 
@@ -497,6 +588,16 @@ mod tests {
                 );
             }
         }
+        // Piece by piece, in pieces of any multiple of 4, as a load takes it.
+        let bytes: Vec<u8> = (0..(40 << 13) + 8).map(|_| rng.next_u64() as u8).collect();
+        let mut sum = Fletcher64::default();
+        let mut rest = &bytes[..];
+        while !rest.is_empty() {
+            let k = (4 * rng.below(3 << 13)).min(rest.len());
+            sum.update(&rest[..k]);
+            rest = &rest[k..];
+        }
+        assert_eq!(sum.finish(), fletcher64_by_definition(&bytes));
         // One word: both sums are the word.
         assert_eq!(fletcher64(b"abcd"), (0x6463_6261 << 32) | 0x6463_6261);
     }
@@ -554,11 +655,12 @@ mod tests {
     fn check_tree_refuses_what_is_not_the_build_tree() {
         let mut rng = Rng::new(3);
         let b = random_bvh(&mut rng, 40, VolumeKind::Rss, CollisionVolume::Obb);
-        assert!(check_tree(&b.nodes, 40).is_ok());
+        let kids: Vec<[NodeRef; 2]> = b.nodes.iter().map(|n| n.children).collect();
+        assert!(check_tree(&kids, 40).is_ok());
         let with = |k: usize, side: usize, r: i32| {
-            let mut nodes = b.nodes.clone();
-            nodes[k].children[side] = NodeRef(r);
-            check_tree(&nodes, 40)
+            let mut kids = kids.clone();
+            kids[k][side] = NodeRef(r);
+            check_tree(&kids, 40)
         };
         for k in 0..b.nodes.len() {
             for side in 0..2 {
@@ -573,30 +675,25 @@ mod tests {
             }
         }
         // Children swapped: the leaves come out of order.
-        let mut nodes = b.nodes.clone();
-        nodes[0].children.swap(0, 1);
-        assert_eq!(check_tree(&nodes, 40), Err(Error::InvalidData));
+        let mut swapped = kids.clone();
+        swapped[0].swap(0, 1);
+        assert_eq!(check_tree(&swapped, 40), Err(Error::InvalidData));
     }
 
     #[test]
     fn check_tree_bounds_the_depth() {
         // A caterpillar: node i has leaf i and node i + 1; the last has two leaves.
         let caterpillar = |n: usize| {
-            let b = Bvh::build(
-                vec![([Vec3::zeros(), Vec3::x(), Vec3::y()], 0); 2],
-                VolumeKind::Rss,
-                CollisionVolume::Obb,
-            )
-            .unwrap();
-            let mut nodes = vec![b.nodes[0]; n - 1];
-            for (i, node) in nodes.iter_mut().enumerate() {
-                node.children = if i + 2 == n {
-                    [NodeRef::leaf(i), NodeRef::leaf(i + 1)]
-                } else {
-                    [NodeRef::leaf(i), NodeRef::inner(i + 1)]
-                };
-            }
-            check_tree(&nodes, n)
+            let kids: Vec<[NodeRef; 2]> = (0..n - 1)
+                .map(|i| {
+                    if i + 2 == n {
+                        [NodeRef::leaf(i), NodeRef::leaf(i + 1)]
+                    } else {
+                        [NodeRef::leaf(i), NodeRef::inner(i + 1)]
+                    }
+                })
+                .collect();
+            check_tree(&kids, n)
         };
         assert!(caterpillar(MAX_DEPTH).is_ok());
         assert_eq!(caterpillar(MAX_DEPTH + 1), Err(Error::InvalidData));
