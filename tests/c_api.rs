@@ -39,6 +39,11 @@ fn threads_share_models() {
 }
 
 #[test]
+fn saved_models_from_c() {
+    c_program("saved");
+}
+
+#[test]
 fn pqp_view_of_a_model_from_c() {
     c_program("legacy_view");
 }
