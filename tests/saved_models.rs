@@ -377,6 +377,9 @@ fn every_flipped_byte_is_invalid_and_past_the_checksum_loads_only_what_it_saves(
     );
 }
 
+/// A change made to saved bytes.
+type Change<'a> = Box<dyn Fn(&mut Vec<u8>) + 'a>;
+
 #[test]
 fn structural_faults_are_caught_past_the_checksum() {
     let m = small_model();
@@ -393,7 +396,7 @@ fn structural_faults_are_caught_past_the_checksum() {
     // The resealing itself is right: unchanged bytes load.
     assert!(try_with(&|_| {}).is_ok());
 
-    let cases: Vec<(&str, Box<dyn Fn(&mut Vec<u8>)>)> = vec![
+    let cases: Vec<(&str, Change<'_>)> = vec![
         ("magic", Box::new(|b| b[0] = b'X')),
         ("version 2", Box::new(|b| put_u32(b, 8, 2))),
         ("version 0", Box::new(|b| put_u32(b, 8, 0))),
