@@ -205,13 +205,58 @@ fn put_u32s(out: &mut [u8], values: &[u32]) {
     }
 }
 
-/// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`.
+/// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`. A large one is offered huge
+/// pages (see [`advise_huge_pages`]).
 fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
-    let mut v = Vec::new();
+    let mut v: Vec<T> = Vec::new();
     v.try_reserve_exact(n)
         .map_err(|_| Error::ModelOutOfMemory)?;
+    advise_huge_pages(v.as_mut_ptr().cast(), n * std::mem::size_of::<T>());
     Ok(v)
 }
+
+/// Asks Linux to back the whole 2 MiB pages of `len` bytes at `start`, freshly allocated and not
+/// yet touched, with huge pages (`madvise(MADV_HUGEPAGE)`; transparent huge pages on request are
+/// the default setting). A load writes every byte of the model once: with 4 KiB pages most of its
+/// time goes to the kernel's page faults (measured: 184 MB copied into fresh memory in 125-190 ms,
+/// 35 ms with huge pages). Advice only: contents and ownership do not change, and where it is
+/// refused (huge pages off) or not built (other systems, Miri) nothing changes but the speed.
+#[cfg(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(miri)
+))]
+fn advise_huge_pages(start: *mut u8, len: usize) {
+    const HUGE: usize = 1 << 21;
+    // MADV_HUGEPAGE on these targets (asm-generic/mman-common.h).
+    const MADV_HUGEPAGE: std::ffi::c_int = 14;
+    unsafe extern "C" {
+        /// libc's `int madvise(void *addr, size_t length, int advice)`.
+        fn madvise(
+            addr: *mut std::ffi::c_void,
+            length: usize,
+            advice: std::ffi::c_int,
+        ) -> std::ffi::c_int;
+    }
+    if len < 2 * HUGE {
+        return;
+    }
+    let first = (start as usize).next_multiple_of(HUGE);
+    let end = (start as usize + len) & !(HUGE - 1);
+    if end > first {
+        // SAFETY: [first, end) lies inside the allocation of `len` bytes at `start`, which the
+        // caller owns; the advice changes neither its contents nor its mapping's validity. A
+        // failure (huge pages disabled) is ignored: it only means no speed-up.
+        unsafe { madvise(first as *mut std::ffi::c_void, end - first, MADV_HUGEPAGE) };
+    }
+}
+
+#[cfg(not(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(miri)
+)))]
+fn advise_huge_pages(_start: *mut u8, _len: usize) {}
 
 /// The sections of a saved hierarchy of `n` triangles (n >= 1) and `v` vertices, in bytes, in the
 /// order they follow the header; `None` if their sum overflows.
