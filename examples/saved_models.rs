@@ -1,9 +1,9 @@
 //! Saved models: how long a model of 40,000 and of 1,000,000 triangles takes to build (one
 //! thread, `Model::end`, what `pqp_model_end` runs), to save (`Model::serialize_into` into a
 //! buffer already allocated) and to load (`Model::from_bytes`: checksum, checks and copies, the
-//! model's memory included), and the bytes per triangle; plus, as the floor of any load that
-//! makes a model of that size, a plain copy of the buffer into freshly allocated memory. Median of
-//! several rounds, the steps alternating within each round.
+//! model's memory included), and the bytes per triangle; plus, for scale, a plain copy of the
+//! buffer into freshly allocated memory (`to_vec`, 4 KiB pages: the load asks for huge pages).
+//! Median of several rounds, the steps alternating within each round.
 //!
 //! `cargo run --release --example saved_models [rounds]`
 
@@ -66,7 +66,7 @@ fn main() {
         .nth(1)
         .map_or(5, |a| a.parse().expect("rounds"));
     println!(
-        "| mesh | triangles | build (ms) | save (ms) | load (ms) | build / load | copy (ms) | \
+        "| mesh | triangles | build (ms) | save (ms) | load (ms) | build / load | plain copy (ms) | \
          bytes/triangle |\n|---|---:|---:|---:|---:|---:|---:|---:|"
     );
     report("sphere 40k", &uv_sphere(1.0, 101, 200), rounds);
