@@ -40,6 +40,12 @@ pub enum Error {
     /// not planar or not strictly convex, a vertex unused, or a vertex above a face (not convex,
     /// or inside out), or flat (`PQP_ERR_INVALID_CONVEX_MESH`).
     InvalidConvexMesh = -12,
+    /// A buffer given to hold a saved model is missing or too small; the size it needs was reported
+    /// and nothing was written (`PQP_ERR_BUFFER_TOO_SMALL`).
+    BufferTooSmall = -13,
+    /// Bytes given as a saved model are not one: wrong magic or version, truncated, checksum
+    /// mismatch, or contents that do not make a valid model (`PQP_ERR_INVALID_DATA`).
+    InvalidData = -14,
 }
 
 /// Largest accepted magnitude of a coordinate or translation. Beyond it squared lengths overflow
@@ -69,6 +75,8 @@ impl Error {
                 "points do not span a volume (fewer than 4 distinct, collinear or coplanar)"
             }
             Error::InvalidConvexMesh => "mesh is not a closed convex polyhedron",
+            Error::BufferTooSmall => "buffer missing or too small (the needed size was reported)",
+            Error::InvalidData => "data is not a valid saved model",
         }
     }
 }

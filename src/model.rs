@@ -8,6 +8,9 @@ use crate::geometry::Tri;
 use crate::math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+// Saved models: `Model::to_bytes`, `serialize_into`, `from_bytes`.
+mod saved;
+
 /// Where a model is in PQP's build protocol ([`Model::build_state`]); PQP 1.3's `build_state`,
 /// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -54,6 +54,11 @@ fn batch_queries_from_c() {
 }
 
 #[test]
+fn saved_models_from_c() {
+    c_program("saved");
+}
+
+#[test]
 fn pqp_view_of_a_model_from_c() {
     c_program("legacy_view");
 }

@@ -1,6 +1,7 @@
 //! The C ABI driven from Rust on tiny models, small enough for Miri (`.ci/run` runs
 //! `cargo +nightly miri test --test capi_miri`; plain `cargo test` runs it too): every handle's
-//! create, use and destroy, the PQP 1.3 views, clone, convex models, NULL pointers and error paths.
+//! create, use and destroy, the PQP 1.3 views, clone, convex models, saved models, NULL pointers
+//! and error paths.
 //! Miri checks what the C ABI does with the pointers it is given and hands out (out-of-bounds
 //! reads and writes, use after free, leaks, invalid references).
 
@@ -741,6 +742,71 @@ fn batch_queries_read_and_write_only_their_arrays() {
             0,
         );
         assert_eq!(rc, PQP_OK);
+        pqp_model_destroy(a);
+        pqp_model_destroy(b);
+    }
+}
+
+/// Saved models: the size query, serialize into a buffer with room to spare and into one too
+/// small, deserialize into a built model (its views dropped) and, refused, from truncated and
+/// unaligned bytes.
+#[test]
+fn saved_models() {
+    let a = model(&[tri(0.0), tri(1.0), tri(2.5)]);
+    let b = model(&[tri(-1.0)]);
+    // SAFETY: every handle is live; every buffer is as long as the length passed with it.
+    unsafe {
+        let mut size = 0usize;
+        assert_eq!(
+            pqp_model_serialize(a, null_mut(), 0, &mut size),
+            PQP_ERR_BUFFER_TOO_SMALL
+        );
+        let mut buf = vec![0u8; size + 5];
+        let mut small = vec![7u8; size - 1];
+        assert_eq!(
+            pqp_model_serialize(a, small.as_mut_ptr().cast(), small.len(), &mut size),
+            PQP_ERR_BUFFER_TOO_SMALL
+        );
+        assert!(small.iter().all(|&x| x == 7));
+        // At an odd address: bytes need no alignment.
+        let mut written = 0usize;
+        assert_eq!(
+            pqp_model_serialize(a, buf[1..].as_mut_ptr().cast(), size + 4, &mut written),
+            PQP_OK
+        );
+        assert_eq!(written, size);
+        let (mut tris, mut n) = (null(), 0);
+        assert_eq!(pqp_model_tris(b, &mut tris, &mut n), PQP_OK);
+        let bytes = &buf[1..1 + size];
+        assert_eq!(
+            pqp_model_deserialize(b, bytes.as_ptr().cast(), size - 1),
+            PQP_ERR_INVALID_DATA
+        );
+        assert_eq!(pqp_model_num_tris(b), 1);
+        assert_eq!(
+            pqp_model_deserialize(b, bytes.as_ptr().cast(), size),
+            PQP_OK
+        );
+        assert_eq!(pqp_model_num_tris(b), 3);
+        assert_eq!(pqp_model_tris(b, &mut tris, &mut n), PQP_OK);
+        assert_eq!((n, (*tris.add(2)).id), (3, 12));
+        let r = pqp_distance_result_create();
+        let up = [0.0, 0.0, 10.0];
+        let rc = pqp_distance(
+            r,
+            I.as_ptr(),
+            O.as_ptr(),
+            a,
+            I.as_ptr(),
+            up.as_ptr(),
+            b,
+            0.0,
+            0.0,
+            2,
+        );
+        assert_eq!(rc, PQP_OK);
+        assert_eq!(pqp_distance_result_distance(r), 7.5);
+        pqp_distance_result_destroy(r);
         pqp_model_destroy(a);
         pqp_model_destroy(b);
     }

@@ -46,6 +46,11 @@ fn convex_inputs() {
     assert!(replay("convex", fuzz_checks::convex) >= 10);
 }
 
+#[test]
+fn deserialize_inputs() {
+    assert!(replay("deserialize", fuzz_checks::deserialize) >= 10);
+}
+
 /// Library bug found by the convex fuzz target: the hull of a valid tetrahedron whose coordinates
 /// mix 1e140 and 1e-140 fails with PQP_ERR_INTERNAL (documented: coordinates of any magnitude up to
 /// 1e150 are accepted; the answer should be a 4-vertex model). The fuzz target tolerates it

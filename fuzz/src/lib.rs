@@ -14,6 +14,10 @@
 //! - [`convex`]: convex models from points and from triangles (valid and broken meshes), then
 //!   distance, intersect and penetration, checked against each other and against the triangle-mesh
 //!   queries on the hulls' faces.
+//! - [`deserialize`]: bytes given to `pqp_model_deserialize` (as they are, or with their checksum
+//!   recomputed so that the structural checks are reached), into a fresh and into a built model:
+//!   refused with `PQP_ERR_INVALID_DATA` and the model unchanged, or loaded as a model that saves
+//!   to exactly those bytes and that every query and view runs on.
 //!
 //! A broken promise is a panic with a message saying which; `PQP_ERR_INTERNAL` (a caught panic
 //! inside the library) counts as one.
@@ -1202,5 +1206,166 @@ pub fn convex(data: &[u8]) {
         for m in models {
             pqp_convex_model_destroy(m);
         }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Saved models.
+
+/// Fletcher-64 of the saved-model layout (docs/saved-model-format.md), from its definition.
+fn fletcher64(bytes: &[u8]) -> u64 {
+    let m = 0xffff_ffffu64;
+    let (mut a, mut b) = (0u64, 0u64);
+    for w in bytes.chunks(4) {
+        let mut x = [0u8; 4];
+        x[..w.len()].copy_from_slice(w);
+        a = (a + u32::from_le_bytes(x) as u64) % m;
+        b = (b + a) % m;
+    }
+    (b << 32) | a
+}
+
+/// A model's saved bytes (it must be built).
+unsafe fn saved_bytes(m: *const pqp_model) -> Vec<u8> {
+    let mut size = 0usize;
+    assert_code(
+        "pqp_model_serialize (size)",
+        pqp_model_serialize(m, null_mut(), 0, &mut size),
+        &[PQP_ERR_BUFFER_TOO_SMALL],
+    );
+    let mut buf = vec![0u8; size];
+    let mut written = 0usize;
+    assert_code(
+        "pqp_model_serialize",
+        pqp_model_serialize(m, buf.as_mut_ptr().cast(), size, &mut written),
+        &[PQP_OK],
+    );
+    assert_eq!(written, size);
+    buf
+}
+
+/// Bytes as a saved model. The first byte chooses: bit 0, recompute the checksum (the last 8
+/// bytes) so that the structural checks are reached; the rest are the bytes.
+pub fn deserialize(data: &[u8]) {
+    let Some((&mode, rest)) = data.split_first() else {
+        return;
+    };
+    let mut bytes = rest.to_vec();
+    if mode & 1 == 1 && bytes.len() >= 8 {
+        let body = bytes.len() - 8;
+        let sum = fletcher64(&bytes[..body]);
+        bytes[body..].copy_from_slice(&sum.to_le_bytes());
+    }
+    unsafe {
+        // A built model to load into: on failure it must stay as it was.
+        let other = pqp_model_create();
+        let (p, q, r) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.5]);
+        assert_eq!(
+            pqp_model_add_tri(other, p.as_ptr(), q.as_ptr(), r.as_ptr(), 9),
+            PQP_OK
+        );
+        assert_eq!(
+            pqp_model_add_tri(other, q.as_ptr(), r.as_ptr(), p.as_ptr(), 8),
+            PQP_OK
+        );
+        assert_eq!(pqp_model_end(other), PQP_OK);
+        let other_bytes = saved_bytes(other);
+
+        let fresh = pqp_model_create();
+        let rc = pqp_model_deserialize(fresh, bytes.as_ptr().cast(), bytes.len());
+        assert_code(
+            "pqp_model_deserialize",
+            rc,
+            &[PQP_OK, PQP_ERR_INVALID_DATA, PQP_ERR_MODEL_OUT_OF_MEMORY],
+        );
+        let into_built = pqp_model_deserialize(other, bytes.as_ptr().cast(), bytes.len());
+        assert_eq!(into_built, rc, "the same bytes, another answer");
+        if rc != PQP_OK {
+            assert_eq!(pqp_model_build_state(fresh), PQP_BUILD_STATE_EMPTY);
+            assert!(
+                saved_bytes(other) == other_bytes,
+                "a failed load changed the model"
+            );
+        } else {
+            // Loaded: exactly what it saves, and every query and view runs on it.
+            assert!(
+                saved_bytes(fresh) == bytes,
+                "a loaded model saves other bytes"
+            );
+            assert!(
+                saved_bytes(other) == bytes,
+                "a loaded model saves other bytes"
+            );
+            let n = pqp_model_num_tris(fresh);
+            assert!(n >= 1);
+            let (mut bvs, mut nb) = (null(), 0);
+            assert_code(
+                "pqp_model_bvs",
+                pqp_model_bvs(fresh, &mut bvs, &mut nb),
+                &[PQP_OK],
+            );
+            assert_eq!(nb, 2 * n - 1);
+            let (mut tris, mut nt) = (null(), 0);
+            assert_code(
+                "pqp_model_tris",
+                pqp_model_tris(fresh, &mut tris, &mut nt),
+                &[PQP_OK],
+            );
+            assert_eq!(nt, n);
+            let id = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+            let t = [0.25, -0.5, 0.125];
+            let z = [0.0; 3];
+            let c = pqp_collide_result_create();
+            let d = pqp_distance_result_create();
+            let tol = pqp_tolerance_result_create();
+            for (a, b) in [(fresh, other), (other, fresh), (fresh, fresh)] {
+                for flag in [PQP_ALL_CONTACTS, PQP_FIRST_CONTACT] {
+                    let rc = pqp_collide(
+                        c,
+                        id.as_ptr(),
+                        z.as_ptr(),
+                        a,
+                        id.as_ptr(),
+                        t.as_ptr(),
+                        b,
+                        flag,
+                    );
+                    assert_code("pqp_collide", rc, &[PQP_OK]);
+                }
+                for (rel, abs) in [(0.0, 0.0), (0.5, 0.1)] {
+                    let rc = pqp_distance(
+                        d,
+                        id.as_ptr(),
+                        z.as_ptr(),
+                        a,
+                        id.as_ptr(),
+                        t.as_ptr(),
+                        b,
+                        rel,
+                        abs,
+                        2,
+                    );
+                    assert_code("pqp_distance", rc, &[PQP_OK]);
+                    assert!(pqp_distance_result_distance(d) >= 0.0);
+                }
+                let rc = pqp_tolerance(
+                    tol,
+                    id.as_ptr(),
+                    z.as_ptr(),
+                    a,
+                    id.as_ptr(),
+                    t.as_ptr(),
+                    b,
+                    0.1,
+                    2,
+                );
+                assert_code("pqp_tolerance", rc, &[PQP_OK]);
+            }
+            pqp_tolerance_result_destroy(tol);
+            pqp_distance_result_destroy(d);
+            pqp_collide_result_destroy(c);
+        }
+        pqp_model_destroy(fresh);
+        pqp_model_destroy(other);
     }
 }

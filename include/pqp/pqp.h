@@ -118,6 +118,18 @@
 #define PQP_ERR_INVALID_CONVEX_MESH (-12)
 
 /**
+ * A buffer for a saved model is NULL or smaller than the model needs (pqp_model_serialize): the
+ * size it needs was written to *size and nothing else was written.
+ */
+#define PQP_ERR_BUFFER_TOO_SMALL (-13)
+
+/**
+ * Bytes given as a saved model are not one (pqp_model_deserialize): wrong magic or version,
+ * truncated, checksum mismatch, or contents that do not make a valid model.
+ */
+#define PQP_ERR_INVALID_DATA (-14)
+
+/**
  * Collision flag: report every colliding triangle pair.
  */
 #define PQP_ALL_CONTACTS 1
@@ -2092,6 +2104,55 @@ const char *pqp_error_string(int code);
  * Thread safety: may be called from any thread at any time.
  */
 const char *pqp_version(void);
+
+/**
+ * Saves a built model into a buffer, to be loaded later, here or on another machine, by
+ * pqp_model_deserialize (much faster than building it again). The bytes hold everything the model
+ * is: its triangles and ids in the order added, its hierarchy and its volume choices. They are
+ * the same on every machine (little-endian, whatever the host), start with a magic and a version
+ * and end with a checksum over every byte; docs/saved-model-format.md describes them. About 184
+ * bytes per triangle.
+ *
+ * Call it first with buffer NULL to learn the size: it returns PQP_ERR_BUFFER_TOO_SMALL with the
+ * size in *size. Then allocate that much and call again.
+ *
+ * @param m         the model (built).
+ * @param buffer    where to write, capacity bytes (any alignment); NULL to ask for the size.
+ * @param capacity  bytes available at buffer.
+ * @param size      receives the number of bytes written, or needed.
+ * @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
+ *         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
+ *         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
+ *         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (a built model may be
+ *                saved while other threads query it), not with build calls on m.
+ */
+int pqp_model_serialize(const struct pqp_model *m, void *buffer, size_t capacity, size_t *size);
+
+/**
+ * Loads a model saved by pqp_model_serialize into m, replacing whatever m held (empty, being
+ * built, or built): m is then built, equal to the saved model (every query answers as the saved
+ * model did, with the same counts of bound and triangle tests) with its volume choices. Nothing is
+ * rebuilt: the bytes are checked and copied, in time linear in size.
+ *
+ * Every byte is checked before m is touched: the magic, the version, the size, the checksum, and
+ * then the contents (every index in range, the hierarchy a tree over the triangles of the
+ * build's depth, coordinates finite and within 1e150, counts consistent), so that no buffer,
+ * truncated, corrupted or crafted, can crash, hang or give a model a query could misuse. Not
+ * checked is that each bounding volume encloses its triangles (that costs a build): bytes crafted
+ * with wrong volumes and a matching checksum give a model whose queries are safe but may answer
+ * wrongly. Load only what pqp_model_serialize wrote.
+ *
+ * @param m       the model to replace.
+ * @param buffer  the saved model, size bytes (any alignment).
+ * @param size    its length in bytes: exactly what pqp_model_serialize gave.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m or buffer is NULL; PQP_ERR_INVALID_DATA if the
+ *         bytes are not a saved model of this format and version (truncated, longer, corrupted,
+ *         or invalid contents); PQP_ERR_MODEL_OUT_OF_MEMORY if the model could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
+ * Thread safety: must not run concurrently with any other call using m.
+ */
+int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
 
 #ifdef __cplusplus
 }  // extern "C"

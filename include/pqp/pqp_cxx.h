@@ -34,6 +34,8 @@ enum c_constants {
     err_internal = PQP_ERR_INTERNAL,
     err_degenerate_points = PQP_ERR_DEGENERATE_POINTS,
     err_invalid_convex_mesh = PQP_ERR_INVALID_CONVEX_MESH,
+    err_buffer_too_small = PQP_ERR_BUFFER_TOO_SMALL,
+    err_invalid_data = PQP_ERR_INVALID_DATA,
     all_contacts = PQP_ALL_CONTACTS,
     first_contact = PQP_FIRST_CONTACT
 };
@@ -52,6 +54,8 @@ enum c_constants {
 #undef PQP_ERR_INTERNAL
 #undef PQP_ERR_DEGENERATE_POINTS
 #undef PQP_ERR_INVALID_CONVEX_MESH
+#undef PQP_ERR_BUFFER_TOO_SMALL
+#undef PQP_ERR_INVALID_DATA
 #undef PQP_ALL_CONTACTS
 #undef PQP_FIRST_CONTACT
 
@@ -69,6 +73,8 @@ const int PQP_ERR_NULL_POINTER = pqp_detail::err_null_pointer;
 const int PQP_ERR_INTERNAL = pqp_detail::err_internal;
 const int PQP_ERR_DEGENERATE_POINTS = pqp_detail::err_degenerate_points;
 const int PQP_ERR_INVALID_CONVEX_MESH = pqp_detail::err_invalid_convex_mesh;
+const int PQP_ERR_BUFFER_TOO_SMALL = pqp_detail::err_buffer_too_small;
+const int PQP_ERR_INVALID_DATA = pqp_detail::err_invalid_data;
 
 /* PQP_Collide's flag: every colliding pair, or stop at the first. */
 const int PQP_ALL_CONTACTS = pqp_detail::all_contacts;

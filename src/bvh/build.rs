@@ -105,19 +105,10 @@ impl Bvh {
         drop(given_ids);
 
         let (verts, faces) = share_vertices(&corners)?;
-        let scale = Bvh::scale_bound(&nodes, &verts);
-        let tiny = Bvh::has_tiny(&verts, &faces);
-        Ok(Bvh {
-            nodes,
-            verts,
-            faces,
-            ids,
-            added,
-            collision,
-            scale,
-            tiny,
-            boundary: std::sync::OnceLock::new(),
-        })
+        let inner = Bvh::inner_scale(&nodes);
+        Ok(Bvh::assemble(
+            nodes, verts, faces, ids, added, collision, inner,
+        ))
     }
 }
 

@@ -17,6 +17,7 @@ mod boundary;
 mod build;
 mod pqp_view;
 mod refit;
+mod saved;
 mod volume_choice;
 
 pub(crate) use boundary::{Boundaries, NodeSurface};
@@ -224,13 +225,45 @@ pub(crate) struct Bvh {
 }
 
 impl Bvh {
-    /// The bound kept in `scale`: the largest over the inner nodes, and five times the largest
-    /// coordinate sum over the vertices (a leaf's corner is a vertex, its sides are at most twice
-    /// the triangle's diameter, which is at most twice the largest vertex norm).
-    fn scale_bound(nodes: &[Node], verts: &[Vec3]) -> f64 {
-        let inner = nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max);
+    /// A hierarchy from its arrays, with what is derived from them (`scale`, `tiny`) computed:
+    /// how a build and a load both end. `inner_scale` is [`Bvh::inner_scale`] of `nodes` (a load
+    /// computes it as it reads them).
+    fn assemble(
+        nodes: Vec<Node>,
+        verts: Vec<Vec3>,
+        faces: Vec<[u32; 3]>,
+        ids: Vec<i32>,
+        added: Vec<u32>,
+        collision: CollisionVolume,
+        inner_scale: f64,
+    ) -> Bvh {
+        let scale = Bvh::scale_bound(inner_scale, &verts);
+        let tiny = Bvh::has_tiny(&verts, &faces);
+        Bvh {
+            nodes,
+            verts,
+            faces,
+            ids,
+            added,
+            collision,
+            scale,
+            tiny,
+            boundary: OnceLock::new(),
+        }
+    }
+
+    /// The bound kept in `scale`: the largest of `inner_scale` ([`Bvh::inner_scale`]) and five
+    /// times the largest coordinate sum over the vertices (a leaf's corner is a vertex, its sides
+    /// are at most twice the triangle's diameter, which is at most twice the largest vertex norm).
+    fn scale_bound(inner_scale: f64, verts: &[Vec3]) -> f64 {
         let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
-        inner.max(5.0 * vertex)
+        inner_scale.max(5.0 * vertex)
+    }
+
+    /// The largest scale of the inner nodes' swept sphere volumes (see [`Ssv::slack_for`]), 0
+    /// without inner nodes.
+    fn inner_scale(nodes: &[Node]) -> f64 {
+        nodes.iter().map(|n| n.ssv.scale()).fold(0.0, f64::max)
     }
 
     /// Whether some triangle has every coordinate below `RESCALE_LO` in magnitude (see `tiny`).

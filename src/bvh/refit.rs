@@ -97,7 +97,7 @@ impl Bvh {
             new.children = children;
             self.nodes[i] = new;
         }
-        self.scale = Bvh::scale_bound(&self.nodes, &self.verts);
+        self.scale = Bvh::scale_bound(Bvh::inner_scale(&self.nodes), &self.verts);
         self.tiny = Bvh::has_tiny(&self.verts, &self.faces);
         Ok(())
     }

@@ -50,6 +50,8 @@ mod convex;
 mod geometry;
 // Error texts and version.
 mod misc;
+// Saved models: serialize and deserialize.
+mod saved;
 
 pub use batch::*;
 pub use collide::*;
@@ -61,6 +63,7 @@ pub use misc::*;
 pub use model::*;
 pub use point::*;
 pub use refit::*;
+pub use saved::*;
 pub use self_collide::*;
 pub use tolerance::*;
 pub use within_distance::*;
@@ -106,6 +109,12 @@ pub const PQP_ERR_DEGENERATE_POINTS: c_int = -11;
 /// not a topological sphere, a face not planar or not strictly convex, an unused vertex, a vertex
 /// above a face (not convex, or inside out), or flat.
 pub const PQP_ERR_INVALID_CONVEX_MESH: c_int = -12;
+/// A buffer for a saved model is NULL or smaller than the model needs (pqp_model_serialize): the
+/// size it needs was written to *size and nothing else was written.
+pub const PQP_ERR_BUFFER_TOO_SMALL: c_int = -13;
+/// Bytes given as a saved model are not one (pqp_model_deserialize): wrong magic or version,
+/// truncated, checksum mismatch, or contents that do not make a valid model.
+pub const PQP_ERR_INVALID_DATA: c_int = -14;
 /// Collision flag: report every colliding triangle pair.
 pub const PQP_ALL_CONTACTS: c_int = 1;
 /// Collision flag: stop at the first colliding triangle pair found.
