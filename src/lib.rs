@@ -62,3 +62,4 @@ pub use query::{
     Strategy, ToleranceResult, collide, collide_into, distance, distance_into, tolerance,
     tolerance_into,
 };
+pub use query::{RayHit, ray_cast, ray_cast_batch};

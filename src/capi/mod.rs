@@ -34,6 +34,8 @@ mod collide;
 mod distance;
 // Tolerance.
 mod tolerance;
+// Ray casting.
+mod ray;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -48,6 +50,7 @@ pub use geometry::*;
 pub use legacy::*;
 pub use misc::*;
 pub use model::*;
+pub use ray::*;
 pub use tolerance::*;
 
 use crate::error::Error;

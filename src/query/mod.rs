@@ -1,4 +1,5 @@
-//! The three proximity queries, one file each, and what they share (`traversal.rs`).
+//! The three proximity queries and ray casting (`ray.rs`), one file each, and what they share
+//! (`traversal.rs`).
 //!
 //! Every query takes two built models, each with its pose, and works in model 1's frame: model 2's
 //! volumes and triangles are brought there by the relative pose. Results are plain values that the
@@ -12,6 +13,7 @@ mod front;
 #[cfg(test)]
 mod layering_tests;
 mod queue;
+mod ray;
 pub(crate) mod search;
 mod strategy;
 mod tolerance;
@@ -19,6 +21,8 @@ mod traversal;
 
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
+pub(crate) use ray::RayCaster;
+pub use ray::{RayHit, ray_cast, ray_cast_batch};
 pub use strategy::{Search, Strategy};
 pub use tolerance::{ToleranceResult, tolerance, tolerance_into};
 
