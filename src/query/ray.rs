@@ -245,8 +245,8 @@ impl LocalRay {
         (t >= -tol).then_some(t.max(0.0))
     }
 
-    /// The parameter interval `[lo, hi]` where the ray is inside node `r`'s grown box, clipped to
-    /// `[0, limit]`; `None` if empty.
+    /// Where the ray enters node `r`'s grown box, clipped to `[0, limit]`: `None` if it misses
+    /// the box there.
     #[inline]
     fn enter(&self, bvh: &Bvh, r: NodeRef, limit: f64) -> Option<f64> {
         let b = bvh.obb(r);
@@ -255,9 +255,10 @@ impl LocalRay {
         let (mut lo, mut hi) = (0.0f64, limit);
         for j in 0..3 {
             let h = b.half[j] + self.grow;
-            let inv = 1.0 / d[j];
+            // A direction parallel to the slab is tilted by 1e-300 (far below the growth): no
+            // 0 * inf, so no NaN.
+            let inv = 1.0 / d[j].abs().max(1e-300).copysign(d[j]);
             let (t1, t2) = ((-h - o[j]) * inv, (h - o[j]) * inv);
-            // `max`/`min` skip a NaN (0 * inf, on a slab's boundary plane): no constraint then.
             lo = lo.max(t1.min(t2));
             hi = hi.min(t1.max(t2));
         }
