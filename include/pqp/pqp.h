@@ -78,7 +78,8 @@
 
 /**
  * A vertex coordinate is NaN, infinite or larger in magnitude than 1e150; the triangle is refused
- * and the model stays usable.
+ * and the model stays usable. Also a ray's origin (NaN, infinite or beyond 1e150) or direction
+ * (NaN or infinite) given to pqp_ray_cast or pqp_ray_cast_batch.
  */
 #define PQP_ERR_NONFINITE_COORDINATE (-6)
 
@@ -89,7 +90,7 @@
 
 /**
  * An argument is out of its domain: unknown contact flag or volume choice, negative or NaN rel_err,
- * abs_err or tolerance, qsize < 1.
+ * abs_err or tolerance, qsize < 1, a zero ray direction or a negative or NaN max_t.
  */
 #define PQP_ERR_INVALID_ARGUMENT (-8)
 
