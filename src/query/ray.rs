@@ -295,14 +295,20 @@ impl LocalRay {
         let mut stack = PairStack::new();
         let mut node = root;
         'search: loop {
-            // The children: leaves are tested at once, inner nodes by their boxes.
+            // The children: leaves are tested at once, and so are the two leaves of a child that
+            // has nothing else (two triangle tests cost less than its box's); other inner nodes
+            // are cut by their boxes.
             let mut next: [Option<(NodeRef, f64)>; 2] = [None, None];
             for (k, c) in bvh.children(node).into_iter().enumerate() {
                 match c.kind() {
                     NodeKind::Leaf(slot) => offer(&mut best, slot),
-                    NodeKind::Inner(_) => {
-                        next[k] = self.enter(bvh, c, reach(&best)).map(|lo| (c, lo))
-                    }
+                    NodeKind::Inner(_) => match bvh.children(c) {
+                        [a, b] if a.is_leaf() && b.is_leaf() => {
+                            offer(&mut best, a.triangle());
+                            offer(&mut best, b.triangle());
+                        }
+                        _ => next[k] = self.enter(bvh, c, reach(&best)).map(|lo| (c, lo)),
+                    },
                 }
             }
             node = match next {
