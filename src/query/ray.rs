@@ -258,9 +258,10 @@ impl LocalRay {
             // A direction parallel to the slab is tilted by 1e-300 (far below the growth): no
             // 0 * inf, so no NaN.
             let inv = 1.0 / d[j].abs().max(1e-300).copysign(d[j]);
-            let (t1, t2) = ((-h - o[j]) * inv, (h - o[j]) * inv);
-            lo = lo.max(t1.min(t2));
-            hi = hi.min(t1.max(t2));
+            // The slab is [-q - w, -q + w]: its centre's and half width's parameters.
+            let (q, w) = (o[j] * inv, h * inv.abs());
+            lo = lo.max(-q - w);
+            hi = hi.min(w - q);
         }
         (lo <= hi).then_some(lo)
     }
