@@ -139,7 +139,7 @@ impl<'a> RayCaster<'a> {
     /// The nearest hit of one ray, whose arguments [`check`](RayCaster::check) accepted.
     pub(crate) fn cast(&self, origin: &Vec3, direction: &Vec3) -> Option<RayHit> {
         // The world direction scaled to a largest coordinate in [1, 2) (exact), then brought into
-        // the model's frame and scaled again; `scale` undoes both on `t`.
+        // the model's frame and scaled again (exact too); `k1 + k2` undoes both on `t`.
         let (dw, k1) = unit_scale(direction);
         let r = &self.pose.rotation;
         let o = r.tr_mul(&(origin - self.pose.translation));
