@@ -20,13 +20,15 @@ pub enum Error {
     /// `end` on a model with no triangles (`PQP_ERR_BUILD_EMPTY_MODEL`).
     BuildEmptyModel = -5,
     /// A vertex coordinate is NaN, infinite, or larger in magnitude than [`MAX_COORDINATE`]; the
-    /// triangle is refused and the model stays usable (`PQP_ERR_NONFINITE_COORDINATE`).
+    /// triangle is refused and the model stays usable (`PQP_ERR_NONFINITE_COORDINATE`). Also a
+    /// ray's origin (the same limits) or direction (NaN or infinite).
     NonFiniteCoordinate = -6,
     /// A rotation or translation entry is NaN, infinite, or larger in magnitude than
     /// [`MAX_COORDINATE`] (`PQP_ERR_NONFINITE_POSE`).
     NonFinitePose = -7,
     /// An argument is out of its domain: unknown contact flag, negative or NaN error bound or
-    /// tolerance, queue size < 1, index out of range (`PQP_ERR_INVALID_ARGUMENT`).
+    /// tolerance, queue size < 1, index out of range, zero ray direction, negative or NaN `max_t`
+    /// (`PQP_ERR_INVALID_ARGUMENT`).
     InvalidArgument = -8,
     /// A required pointer was NULL (C ABI only, `PQP_ERR_NULL_POINTER`).
     NullPointer = -9,

@@ -34,6 +34,21 @@ fn convex_polyhedra_error_paths_and_answers() {
 }
 
 #[test]
+fn ray_casting() {
+    c_program("ray");
+}
+
+/// The ray casting example builds warning-free and renders the bunny.
+#[test]
+fn ray_cast_example_runs() {
+    let exe = build_program(&root().join("examples/ray_cast.c"), "c99", "ray_cast.c");
+    let mut cmd = std::process::Command::new(&exe);
+    cmd.arg(root().join("examples/models/bunny.tris"));
+    let out = c_toolchain::run(cmd, "ray_cast.c");
+    assert!(String::from_utf8_lossy(&out.stdout).contains('#'));
+}
+
+#[test]
 fn threads_share_models() {
     c_program("threads");
 }

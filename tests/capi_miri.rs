@@ -2,6 +2,8 @@
 //! `cargo +nightly miri test --test capi_miri`; plain `cargo test` runs it too): every handle's
 //! create, use and destroy, the PQP 1.3 views, clone, convex models, saved models, NULL pointers
 //! and error paths.
+//! create, use and destroy, the PQP 1.3 views, clone, convex models, ray casts (single and batched
+//! on two threads), NULL pointers and error paths.
 //! Miri checks what the C ABI does with the pointers it is given and hands out (out-of-bounds
 //! reads and writes, use after free, leaks, invalid references).
 
@@ -809,5 +811,110 @@ fn saved_models() {
         pqp_distance_result_destroy(r);
         pqp_model_destroy(a);
         pqp_model_destroy(b);
+    }
+}
+
+#[test]
+fn ray_casts() {
+    unsafe {
+        // Two stacked triangles: a ray down through both hits the upper one.
+        let m = model(&[tri(0.0), tri(1.0)]);
+        let (o, d) = ([0.25, 0.25, 3.0], [0.0, 0.0, -1.0]);
+        let mut hit = std::mem::MaybeUninit::<pqp_ray_hit>::uninit();
+        let rc = pqp_ray_cast(
+            hit.as_mut_ptr(),
+            I.as_ptr(),
+            O.as_ptr(),
+            m,
+            o.as_ptr(),
+            d.as_ptr(),
+            f64::INFINITY,
+        );
+        assert_eq!(rc, PQP_OK);
+        let hit = hit.assume_init();
+        assert_eq!((hit.t, hit.triangle), (2.0, 11));
+        let mut h = hit;
+        let zero = [0.0; 3];
+        assert_eq!(
+            pqp_ray_cast(
+                &mut h,
+                I.as_ptr(),
+                O.as_ptr(),
+                m,
+                o.as_ptr(),
+                zero.as_ptr(),
+                1.0
+            ),
+            PQP_ERR_INVALID_ARGUMENT
+        );
+        assert_eq!(
+            pqp_ray_cast(
+                null_mut(),
+                I.as_ptr(),
+                O.as_ptr(),
+                m,
+                o.as_ptr(),
+                d.as_ptr(),
+                1.0
+            ),
+            PQP_ERR_NULL_POINTER
+        );
+        // A batch of 70 rays (two chunks) on two threads, one ray missing; then one bad ray.
+        let n = 70;
+        let mut origins = Vec::new();
+        let mut dirs = Vec::new();
+        for i in 0..n {
+            origins.extend_from_slice(&[0.25, if i == 5 { 3.0 } else { 0.25 }, 3.0]);
+            dirs.extend_from_slice(&d);
+        }
+        let mut hits = vec![h; n];
+        let rc = pqp_ray_cast_batch(
+            hits.as_mut_ptr(),
+            n,
+            I.as_ptr(),
+            O.as_ptr(),
+            m,
+            origins.as_ptr(),
+            dirs.as_ptr(),
+            5.0,
+            2,
+        );
+        assert_eq!(rc, PQP_OK);
+        assert_eq!(hits[5].triangle, -1);
+        assert!(
+            hits.iter()
+                .enumerate()
+                .all(|(i, x)| i == 5 || x.triangle == 11)
+        );
+        dirs[3 * 40] = f64::NAN;
+        let before = hits.clone();
+        let rc = pqp_ray_cast_batch(
+            hits.as_mut_ptr(),
+            n,
+            I.as_ptr(),
+            O.as_ptr(),
+            m,
+            origins.as_ptr(),
+            dirs.as_ptr(),
+            5.0,
+            2,
+        );
+        assert_eq!(rc, PQP_ERR_NONFINITE_COORDINATE);
+        assert_eq!(hits[7], before[7]);
+        assert_eq!(
+            pqp_ray_cast_batch(
+                null_mut(),
+                0,
+                I.as_ptr(),
+                O.as_ptr(),
+                m,
+                null(),
+                null(),
+                1.0,
+                0
+            ),
+            PQP_OK
+        );
+        pqp_model_destroy(m);
     }
 }

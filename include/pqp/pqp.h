@@ -78,7 +78,8 @@
 
 /**
  * A vertex coordinate is NaN, infinite or larger in magnitude than 1e150; the triangle is refused
- * and the model stays usable.
+ * and the model stays usable. Also a ray's origin (NaN, infinite or beyond 1e150) or direction
+ * (NaN or infinite) given to pqp_ray_cast or pqp_ray_cast_batch.
  */
 #define PQP_ERR_NONFINITE_COORDINATE (-6)
 
@@ -89,7 +90,7 @@
 
 /**
  * An argument is out of its domain: unknown contact flag or volume choice, negative or NaN rel_err,
- * abs_err or tolerance, qsize < 1.
+ * abs_err or tolerance, qsize < 1, a zero ray direction or a negative or NaN max_t.
  */
 #define PQP_ERR_INVALID_ARGUMENT (-8)
 
@@ -451,6 +452,37 @@ typedef struct pqp_point_result {
      */
     int triangle;
 } pqp_point_result;
+
+/**
+ * Where a ray first meets a model (pqp_ray_cast, pqp_ray_cast_batch).
+ *
+ * Accuracy: point lies within 1e-14 * (|origin| + |T| + m) of the hit triangle, m being the
+ * model's largest vertex coordinate (in its frame): it is a point of the triangle up to the
+ * rounding of the coordinates.
+ * Along the ray the error grows as the ray grazes the triangle (divided by the sine of the angle
+ * between the ray and the triangle's plane).
+ */
+typedef struct pqp_ray_hit {
+    /**
+     * The hit is at origin + t * direction, 0 <= t <= max_t, in units of the direction given;
+     * INFINITY if no hit in [0, max_t].
+     */
+    double t;
+    /**
+     * The hit point, world coordinates (NaN if no hit).
+     */
+    double point[3];
+    /**
+     * The unit normal of the hit triangle, (p2 - p1) x (p3 - p1) with its vertices in the order
+     * given to pqp_model_add_tri, world coordinates (NaN if no hit). It points to either side of
+     * the ray: triangles are hit from both sides.
+     */
+    double normal[3];
+    /**
+     * The caller's id of the hit triangle; -1 if no hit.
+     */
+    int triangle;
+} pqp_ray_hit;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1576,6 +1608,75 @@ int pqp_tolerance_batch(int *closer,
                         const struct pqp_model *m2,
                         double tolerance,
                         unsigned int threads);
+
+/**
+ * Casts a ray at a posed model: the nearest point where origin + t * direction, 0 <= t <= max_t,
+ * meets one of its triangles.
+ *
+ * Watertight: a ray through an edge or a vertex shared by triangles of a closed mesh hits one of
+ * them, never slips between. Triangles are hit from either side. A ray lying in a triangle's plane
+ * does not hit that triangle (it hits its neighbours' edges); a triangle without area is never
+ * hit. A ray starting on a triangle hits it at t = 0. Among hits at the same t, the triangle added
+ * first is reported. See pqp_ray_hit for the accuracy.
+ *
+ * @param hit        where the answer is written (only on PQP_OK).
+ * @param R, T       the model's pose (as for pqp_collide).
+ * @param m          the model (built).
+ * @param origin     3 doubles, world coordinates, each finite and at most 1e150 in magnitude.
+ * @param direction  3 doubles, world coordinates, finite, not all zero; need not be a unit vector
+ *                   (t is in its units).
+ * @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
+ * @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
+ *         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
+ *         built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
+ *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
+ *         1e150 in magnitude, or a direction coordinate is NaN or infinite; PQP_ERR_INTERNAL on an
+ *         internal fault. On any error nothing is written.
+ * Thread safety: any number of calls may use the same model at once from different threads.
+ */
+int pqp_ray_cast(struct pqp_ray_hit *hit,
+                 const double *R,
+                 const double *T,
+                 const struct pqp_model *m,
+                 const double *origin,
+                 const double *direction,
+                 double max_t);
+
+/**
+ * Casts n rays at a posed model, on several threads: hits[i] is what pqp_ray_cast gives for the
+ * ray origins + 3 * i, directions + 3 * i (the same answer, whatever the threads).
+ *
+ * Every ray is checked before any is cast: one bad ray fails the whole call.
+ *
+ * @param hits        n answers, written only on PQP_OK; must not overlap origins or directions.
+ * @param n           the number of rays; 0 returns PQP_OK (hits, origins and directions may
+ *                    then be NULL).
+ * @param R, T        the model's pose (as for pqp_collide).
+ * @param m           the model (built).
+ * @param origins     3 n doubles: the origins, as for pqp_ray_cast.
+ * @param directions  3 n doubles: the directions, as for pqp_ray_cast.
+ * @param max_t       the farthest t of interest for every ray, as for pqp_ray_cast.
+ * @param threads     the threads to cast on, the calling one included; 0 for as many as the
+ *                    machine has. Fewer are used for few rays (one per 64 rays at most), and at
+ *                    most 256.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if R, T or m is NULL, or hits, origins or directions is
+ *         NULL and n > 0; PQP_ERR_INVALID_ARGUMENT if n is too large for the address space (n *
+ *         sizeof(pqp_ray_hit) > PTRDIFF_MAX), or as pqp_ray_cast for max_t or any ray; the other
+ *         codes as pqp_ray_cast, for any ray; PQP_ERR_INTERNAL on an internal fault (every hit
+ *         is then reset to "no hit" if the casting had begun). On any other error nothing is
+ *         written.
+ * Thread safety: as pqp_ray_cast.
+ */
+int pqp_ray_cast_batch(struct pqp_ray_hit *hits,
+                       size_t n,
+                       const double *R,
+                       const double *T,
+                       const struct pqp_model *m,
+                       const double *origins,
+                       const double *directions,
+                       double max_t,
+                       unsigned int threads);
 
 /**
  * Creates a convex model: the convex hull of a point set.

@@ -44,6 +44,8 @@ mod within_distance;
 mod point;
 // Batches of collision, distance and tolerance queries on several threads.
 mod batch;
+// Ray casting.
+mod ray;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -62,6 +64,7 @@ pub use legacy::*;
 pub use misc::*;
 pub use model::*;
 pub use point::*;
+pub use ray::*;
 pub use refit::*;
 pub use saved::*;
 pub use self_collide::*;
@@ -90,12 +93,13 @@ pub const PQP_ERR_BUILD_OUT_OF_SEQUENCE: c_int = -4;
 /// pqp_model_end on a model with no triangles.
 pub const PQP_ERR_BUILD_EMPTY_MODEL: c_int = -5;
 /// A vertex coordinate is NaN, infinite or larger in magnitude than 1e150; the triangle is refused
-/// and the model stays usable.
+/// and the model stays usable. Also a ray's origin (NaN, infinite or beyond 1e150) or direction
+/// (NaN or infinite) given to pqp_ray_cast or pqp_ray_cast_batch.
 pub const PQP_ERR_NONFINITE_COORDINATE: c_int = -6;
 /// A rotation or translation entry is NaN, infinite or larger in magnitude than 1e150.
 pub const PQP_ERR_NONFINITE_POSE: c_int = -7;
 /// An argument is out of its domain: unknown contact flag or volume choice, negative or NaN rel_err,
-/// abs_err or tolerance, qsize < 1.
+/// abs_err or tolerance, qsize < 1, a zero ray direction or a negative or NaN max_t.
 pub const PQP_ERR_INVALID_ARGUMENT: c_int = -8;
 /// A required pointer was NULL.
 pub const PQP_ERR_NULL_POINTER: c_int = -9;

@@ -1,4 +1,5 @@
-//! The three proximity queries, one file each, and what they share (`traversal.rs`).
+//! The three proximity queries and ray casting (`ray.rs`), one file each, and what they share
+//! (`traversal.rs`).
 //!
 //! Every query takes two built models, each with its pose, and works in model 1's frame: model 2's
 //! volumes and triangles are brought there by the relative pose. Results are plain values that the
@@ -14,6 +15,7 @@ mod front;
 mod layering_tests;
 mod point;
 mod queue;
+mod ray;
 pub(crate) mod search;
 mod self_collide;
 mod strategy;
@@ -29,6 +31,8 @@ pub use batch::{collide_batch, distance_batch, tolerance_batch};
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
 pub use point::{PointResult, closest_point, signed_distance};
+pub(crate) use ray::RayCaster;
+pub use ray::{RayHit, ray_cast, ray_cast_batch};
 pub use self_collide::{self_collide, self_collide_into, self_contact};
 pub use strategy::{Search, Strategy};
 pub use tolerance::{ToleranceResult, tolerance, tolerance_into};

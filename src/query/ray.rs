@@ -1,0 +1,642 @@
+//! Ray casting: where a ray first meets a posed model.
+//!
+//! The ray is brought into the model's frame once. Its direction is scaled by a power of two (exact;
+//! `t` is scaled back on output) and the coordinates are permuted and sheared so that the ray runs
+//! along the third axis from the origin: a vertex `v` becomes `(x, y)`, the foot of `v - o` on the
+//! plane across the ray, and `z`, the ray parameter of `v`'s plane across the dominant axis. The ray
+//! meets a triangle when the origin of that plane lies in the projected triangle, decided by the
+//! signs of the three 2D edge functions (the doubled areas the origin makes with each edge).
+//!
+//! **Watertight.** A vertex's projection depends on the vertex and the ray only, so triangles that
+//! share it see the same point; an edge's function is the same expression for both triangles that
+//! share it, with its operands swapped, so its floating-point value is exactly negated; and its sign
+//! is exact (a float filter, and [`orient2d`]'s exact arithmetic where the filter cannot decide). A
+//! triangle is hit when no two of its edge functions have opposite signs and not all are zero, so a
+//! ray through a shared edge hits both triangles and one through a vertex hits every triangle around
+//! it that is not edge-on: a ray can never slip between the triangles of a closed mesh.
+//!
+//! **Where.** On a hit, the barycentric weights are recomputed to a few ulps (rescaled, with exact
+//! products), and `t` is their combination of the vertices' `z`: the hit point is a point of the
+//! triangle (to within a few ulps of the coordinates' magnitude, see [`RayHit`]).
+//!
+//! **Search.** Nearest first through the hierarchy: each inner node's box is cut by the ray (slab
+//! test in the box's frame, the box grown by a rounding allowance that covers both the test's
+//! rounding and the hit point's), and nodes whose entry lies beyond the best hit so far are pruned.
+//! Among hits at the same `t`, the triangle added first wins, so the answer does not depend on the
+//! order of the search.
+
+use super::traversal::{NodePair, PairStack};
+use crate::bvh::{Bvh, NodeKind, NodeRef};
+use crate::error::{Error, MAX_COORDINATE};
+use crate::geometry::Tri;
+use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
+use crate::math::{Pose, Vec3};
+use crate::model::Model;
+use std::sync::Mutex;
+
+/// The nearest hit of a ray on a posed model.
+///
+/// Accuracy: `point` (which is `origin + t * direction`, world coordinates) lies within
+/// `1e-14 * (|origin| + |T| + m)` of the hit triangle posed in the world, `m` being the largest
+/// vertex coordinate of the model (in its frame) and `T` the pose's translation: it is a point of
+/// the triangle up to the rounding of the coordinates. Along the ray the error grows as the ray grazes the triangle
+/// (divided by the sine of the angle between the ray and the triangle's plane), as for any
+/// floating-point answer to that question.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayHit {
+    /// The ray parameter of the hit: `origin + t * direction`, in `[0, max_t]`, in units of the
+    /// direction given (which need not be a unit vector).
+    pub t: f64,
+    /// The hit point, world coordinates.
+    pub point: Vec3,
+    /// The unit normal of the hit triangle, `(p2 - p1) x (p3 - p1)` (its vertices in the order they
+    /// were added), world coordinates: it points to either side of the ray, as the triangle's
+    /// winding says.
+    pub normal: Vec3,
+    /// The caller's id of the hit triangle.
+    pub triangle: i32,
+}
+
+/// Largest magnitude of a model-frame coordinate of the ray's origin. Rays of valid input stay
+/// below it (an origin and a translation up to [`MAX_COORDINATE`], a rotation); beyond it (poses
+/// that are not rotations) the edge functions could overflow, and the ray hits nothing.
+const MAX_LOCAL: f64 = 4.0 * MAX_COORDINATE;
+
+/// Relative error bound of an edge function `l - r` computed from rounded products `l`, `r`:
+/// comfortably above its three roundings.
+const EDGE_ERR: f64 = 4.0 * f64::EPSILON;
+
+/// Absolute part of the edge functions' error bound: covers products that underflow.
+const EDGE_UNDERFLOW: f64 = 1e-300;
+
+/// Ray casts against one model at one pose: the checked query arguments, shared by every ray.
+pub(crate) struct RayCaster<'a> {
+    bvh: &'a Bvh,
+    pose: Pose,
+    max_t: f64,
+}
+
+/// A ray in the model's frame, ready for the triangle and box tests.
+struct LocalRay {
+    /// Origin.
+    o: Vec3,
+    /// Direction, scaled by `2^-k` so that its largest coordinate is in `[1, 2)`.
+    d: Vec3,
+    /// The permutation: `kz` the direction's dominant axis, `kx`, `ky` the others.
+    kx: usize,
+    ky: usize,
+    kz: usize,
+    /// The shear that makes the ray the third axis: `x' = x - sx z`, `y' = y - sy z`.
+    sx: f64,
+    sy: f64,
+    /// How far the boxes are grown: covers the slab test's rounding and how far a hit point may lie
+    /// from its triangle.
+    grow: f64,
+}
+
+/// The best hit so far: its parameter (in the scaled direction's units) and its leaf slot.
+#[derive(Clone, Copy)]
+struct Best {
+    t: f64,
+    slot: usize,
+    /// The insertion index of the slot's triangle (ties between equal `t` go to the smallest).
+    added: u32,
+}
+
+impl<'a> RayCaster<'a> {
+    /// Checks the query's arguments shared by all rays: a built model, a finite pose, `max_t` not
+    /// negative and not NaN.
+    pub(crate) fn new(model: &'a Model, pose: &Pose, max_t: f64) -> Result<RayCaster<'a>, Error> {
+        let bvh = model.bvh()?;
+        pose.validate()?;
+        if max_t.is_nan() || max_t < 0.0 {
+            return Err(Error::InvalidArgument);
+        }
+        Ok(RayCaster {
+            bvh,
+            pose: *pose,
+            max_t: max_t.max(0.0),
+        })
+    }
+
+    /// `Err(NonFiniteCoordinate)` if the origin or the direction has a NaN, infinite or larger than
+    /// [`MAX_COORDINATE`] coordinate (the direction may be as large as any finite value), and
+    /// `Err(InvalidArgument)` if the direction is zero.
+    pub(crate) fn check(origin: &Vec3, direction: &Vec3) -> Result<(), Error> {
+        if !origin
+            .iter()
+            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE)
+            || !direction.iter().all(|v| v.is_finite())
+        {
+            return Err(Error::NonFiniteCoordinate);
+        }
+        if direction.amax() == 0.0 {
+            return Err(Error::InvalidArgument);
+        }
+        Ok(())
+    }
+
+    /// The nearest hit of one ray, whose arguments [`check`](RayCaster::check) accepted.
+    pub(crate) fn cast(&self, origin: &Vec3, direction: &Vec3) -> Option<RayHit> {
+        // The world direction scaled to a largest coordinate in [1, 2) (exact), then brought into
+        // the model's frame and scaled again (exact too); `k1 + k2` undoes both on `t`.
+        let (dw, k1) = unit_scale(direction);
+        let r = &self.pose.rotation;
+        let o = r.tr_mul(&(origin - self.pose.translation));
+        let (d, k2) = unit_scale(&r.tr_mul(&dw));
+        if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_LOCAL)
+            || !d.iter().all(|v| v.is_finite())
+            || d.amax() == 0.0
+        {
+            return None;
+        }
+        let ray = LocalRay::new(o, d, self.bvh.scale);
+        // The local direction is the world's times 2^-k: a local parameter t is 2^-k t in the
+        // world's units. The largest local parameter worth a look (rounded up).
+        let k = k1 + k2;
+        let limit = upper_scaled(self.max_t, k);
+        let best = ray.search(self.bvh, limit, |t| {
+            let tw = scaled(t, -k);
+            tw.is_finite() && tw <= self.max_t
+        })?;
+        let t = scaled(best.t, -k);
+        let [a, b, c] = self.bvh.tri(best.slot);
+        let normal = unit(&(r * triangle_normal(&a, &b, &c)));
+        Some(RayHit {
+            t,
+            point: origin + direction * t,
+            normal,
+            triangle: self.bvh.ids[best.slot],
+        })
+    }
+}
+
+impl LocalRay {
+    fn new(o: Vec3, d: Vec3, model_scale: f64) -> LocalRay {
+        let a = d.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        // Rounding in the box frame (the centre and origin moved, the direction turned) and the hit
+        // point's distance from its triangle are a few ulps of the coordinates involved: this covers
+        // both many times over, and the underflow of tiny models.
+        let grow = 1e-12 * (o.abs().sum() + model_scale) + 1e-290;
+        LocalRay {
+            o,
+            d,
+            kx,
+            ky,
+            kz,
+            sx: d[kx] / d[kz],
+            sy: d[ky] / d[kz],
+            grow,
+        }
+    }
+
+    /// A vertex in the ray's frame: `(x', y')` across the ray, and `v - o` along the dominant axis.
+    #[inline(always)]
+    fn project(&self, v: &Vec3) -> [f64; 3] {
+        let a = v - self.o;
+        let z = a[self.kz];
+        [a[self.kx] - self.sx * z, a[self.ky] - self.sy * z, z]
+    }
+
+    /// The ray parameter where it meets triangle `t` (scaled direction's units), if it does at a
+    /// parameter `>= 0` (a hit within rounding behind the origin counts as a hit at 0).
+    #[inline]
+    fn hit(&self, t: &Tri) -> Option<f64> {
+        let [a, b, c] = [
+            self.project(&t[0]),
+            self.project(&t[1]),
+            self.project(&t[2]),
+        ];
+        let e = [edge(&b, &c), edge(&c, &a), edge(&a, &b)];
+        // Most misses: one edge function surely negative, another surely positive.
+        let neg = e.iter().any(|&(v, err)| v < -err);
+        let pos = e.iter().any(|&(v, err)| v > err);
+        if neg && pos {
+            return None;
+        }
+        let s = [
+            edge_sign(e[0], &b, &c),
+            edge_sign(e[1], &c, &a),
+            edge_sign(e[2], &a, &b),
+        ];
+        let (neg, pos) = (s.contains(&-1), s.contains(&1));
+        if neg == pos || zero_area(t) {
+            // Opposite signs (a miss), or all zero (edge-on: its neighbours' edges are hit), or a
+            // triangle without area.
+            return None;
+        }
+        let w = weights(&[a, b, c], s);
+        let z = [
+            a[2] / self.d[self.kz],
+            b[2] / self.d[self.kz],
+            c[2] / self.d[self.kz],
+        ];
+        let t = w[0] * z[0] + w[1] * z[1] + w[2] * z[2];
+        // The sum's rounding and the z's: a few ulps of the largest.
+        let tol = 8.0 * f64::EPSILON * z[0].abs().max(z[1].abs()).max(z[2].abs());
+        (t >= -tol).then_some(t.max(0.0))
+    }
+
+    /// Where the ray enters node `r`'s grown box, clipped to `[0, limit]`: `None` if it misses
+    /// the box there.
+    #[inline]
+    fn enter(&self, bvh: &Bvh, r: NodeRef, limit: f64) -> Option<f64> {
+        let b = bvh.obb(r);
+        let o = b.axes.tr_mul(&(self.o - b.center));
+        let d = b.axes.tr_mul(&self.d);
+        let (mut lo, mut hi) = (0.0f64, limit);
+        for j in 0..3 {
+            let h = b.half[j] + self.grow;
+            // A direction parallel to the slab is tilted by 1e-300 (far below the growth): no
+            // 0 * inf, so no NaN.
+            let inv = 1.0 / d[j].abs().max(1e-300).copysign(d[j]);
+            // The slab is [-q - w, -q + w]: its centre's and half width's parameters.
+            let (q, w) = (o[j] * inv, h * inv.abs());
+            lo = lo.max(-q - w);
+            hi = hi.min(w - q);
+        }
+        (lo <= hi).then_some(lo)
+    }
+
+    /// The nearest hit in `bvh` at a parameter `<= limit` that `accept` takes (ties: the triangle
+    /// added first), searching nearer nodes first.
+    fn search(&self, bvh: &Bvh, limit: f64, accept: impl Fn(f64) -> bool) -> Option<Best> {
+        let mut best: Option<Best> = None;
+        // How far a node may start and still be visited: the best hit's parameter (a node starting
+        // exactly there may hold a triangle added earlier), grown by a few ulps for the slab test's
+        // last rounding.
+        let reach = |best: &Option<Best>| best.map_or(limit, |b| b.t) * (1.0 + 1e-14);
+        let offer = |best: &mut Option<Best>, slot: usize| {
+            let Some(t) = self.hit(&bvh.tri(slot)) else {
+                return;
+            };
+            let added = bvh.added[slot];
+            let better = match best {
+                None => true,
+                Some(b) => t < b.t || (t == b.t && added < b.added),
+            };
+            if better && accept(t) {
+                *best = Some(Best { t, slot, added });
+            }
+        };
+        let root = bvh.root();
+        if let NodeKind::Leaf(slot) = root.kind() {
+            offer(&mut best, slot);
+            return best;
+        }
+        self.enter(bvh, root, reach(&best))?;
+        let mut stack = PairStack::new();
+        let mut node = root;
+        'search: loop {
+            // The children: leaves are tested at once, and so are the two leaves of a child that
+            // has nothing else (two triangle tests cost less than its box's); other inner nodes
+            // are cut by their boxes.
+            let mut next: [Option<(NodeRef, f64)>; 2] = [None, None];
+            for (k, c) in bvh.children(node).into_iter().enumerate() {
+                match c.kind() {
+                    NodeKind::Leaf(slot) => offer(&mut best, slot),
+                    NodeKind::Inner(_) => match bvh.children(c) {
+                        [a, b] if a.is_leaf() && b.is_leaf() => {
+                            offer(&mut best, a.triangle());
+                            offer(&mut best, b.triangle());
+                        }
+                        _ => next[k] = self.enter(bvh, c, reach(&best)).map(|lo| (c, lo)),
+                    },
+                }
+            }
+            node = match next {
+                [Some(a), Some(b)] => {
+                    let (near, far) = if b.1 < a.1 { (b, a) } else { (a, b) };
+                    stack.push(NodePair {
+                        a: far.0,
+                        b: NodeRef::default(),
+                        bound: far.1,
+                    });
+                    near.0
+                }
+                [Some(a), None] | [None, Some(a)] => a.0,
+                [None, None] => loop {
+                    match stack.pop() {
+                        None => break 'search,
+                        Some(p) if p.bound <= reach(&best) => break p.a,
+                        Some(_) => {}
+                    }
+                },
+            };
+        }
+        best
+    }
+}
+
+/// The edge function of `p`, `q` about the ray (`p x q` in the plane across it), with a bound on
+/// its rounding error.
+#[inline(always)]
+fn edge(p: &[f64; 3], q: &[f64; 3]) -> (f64, f64) {
+    let (l, r) = (p[0] * q[1], p[1] * q[0]);
+    (l - r, EDGE_ERR * (l.abs() + r.abs()) + EDGE_UNDERFLOW)
+}
+
+/// The exact sign of an edge function (-1, 0, 1), from its filtered value or exactly.
+#[inline]
+fn edge_sign((v, err): (f64, f64), p: &[f64; 3], q: &[f64; 3]) -> i8 {
+    let v = if v.abs() > err {
+        v
+    } else {
+        // (q - p) x (0 - p) = p x q, with an exact sign.
+        orient2d([p[0], p[1]], [q[0], q[1]], [0.0, 0.0])
+    };
+    (v > 0.0) as i8 - (v < 0.0) as i8
+}
+
+/// The barycentric weights of the ray's point in the projected triangle `v` (summing to 1), each
+/// to a few ulps: the edge functions recomputed on coordinates scaled by a power of two (no under-
+/// or overflow) with exact products, their signs `s` being the exact ones.
+fn weights(v: &[[f64; 3]; 3], s: [i8; 3]) -> [f64; 3] {
+    let m = v
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let k = pow2((-exponent(m)).clamp(-1022, 1023));
+    let p = v.map(|p| [p[0] * k, p[1] * k]);
+    let f = |a: [f64; 2], b: [f64; 2], s: i8| {
+        let (x, ex) = two_prod(a[0], b[1]);
+        let (y, ey) = two_prod(a[1], b[0]);
+        let w = (x - y) + (ex - ey);
+        // Keep the exact sign (products that underflow can disagree with it).
+        if (w > 0.0) as i8 - (w < 0.0) as i8 == s {
+            w
+        } else {
+            0.0
+        }
+    };
+    let mut w = [
+        f(p[1], p[2], s[0]),
+        f(p[2], p[0], s[1]),
+        f(p[0], p[1], s[2]),
+    ];
+    let mut sum = w[0] + w[1] + w[2];
+    if sum == 0.0 {
+        // Every weight lost to underflow (coordinates spanning hundreds of orders of magnitude):
+        // some point of the triangle.
+        w = s.map(|s| f64::from(s.abs()));
+        sum = w[0] + w[1] + w[2];
+    }
+    w.map(|w| w / sum)
+}
+
+/// Whether triangle `t` has no area (its vertices are collinear), exactly: its normal's three
+/// components, the orientations of its projections on the coordinate planes, are all zero.
+fn zero_area(t: &Tri) -> bool {
+    [(0, 1), (1, 2), (2, 0)]
+        .iter()
+        .all(|&(i, j)| orient2d([t[0][i], t[0][j]], [t[1][i], t[1][j]], [t[2][i], t[2][j]]) == 0.0)
+}
+
+/// `(b - a) x (c - a)` of a triangle with area, to a few ulps, in some positive scale.
+fn triangle_normal(a: &Vec3, b: &Vec3, c: &Vec3) -> Vec3 {
+    let (e1, e2) = (b - a, c - a);
+    let k = pow2((-exponent(e1.amax().max(e2.amax()))).clamp(-1022, 1023));
+    let n = cross_accurate(&(e1 * k), &(e2 * k));
+    if n != Vec3::zeros() {
+        return n;
+    }
+    // The edges' rounding made them parallel: the exact components' signs, approximate values.
+    let o = |i: usize, j: usize| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]);
+    Vec3::new(o(1, 2), o(2, 0), o(0, 1))
+}
+
+/// `v` scaled to unit length (by a power of two first, so that its squares neither under- nor
+/// overflow).
+fn unit(v: &Vec3) -> Vec3 {
+    let (v, _) = unit_scale(v);
+    v / v.norm()
+}
+
+/// `v` (not zero) scaled by `2^-k` so that its largest coordinate is in `[1, 2)`, and `k`.
+fn unit_scale(v: &Vec3) -> (Vec3, i32) {
+    let m = v.amax();
+    if m == 0.0 || !m.is_finite() {
+        return (*v, 0);
+    }
+    let k = match exponent(m) {
+        // Subnormal: its exponent, read after scaling into the normal range.
+        -1023 => exponent(m * pow2(600)) - 600,
+        k => k,
+    };
+    (v.map(|x| scaled(x, -k)), k)
+}
+
+/// `x * 2^k`, in steps so that no factor is out of range; it may over- or underflow.
+fn scaled(x: f64, k: i32) -> f64 {
+    let mut y = x;
+    let mut k = k;
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        y *= pow2(step);
+        k -= step;
+    }
+    y
+}
+
+/// `x * 2^k` (`x >= 0`) rounded up: an underflow to 0 gives the smallest positive value.
+fn upper_scaled(x: f64, k: i32) -> f64 {
+    let y = scaled(x, k);
+    if y == 0.0 && x > 0.0 {
+        f64::from_bits(1)
+    } else {
+        y
+    }
+}
+
+/// The nearest hit of a ray on a posed model: where `origin + t * direction` first meets a triangle
+/// for `t` in `[0, max_t]`, or `None`.
+///
+/// The direction need not be a unit vector (`t` is in its units). Hits are watertight: a ray
+/// through an edge or a vertex shared by triangles of a closed mesh hits one of them. Triangles are
+/// hit from either side; a ray in a triangle's plane does not hit it (its neighbours' edges are
+/// hit), nor does any ray hit a triangle without area. A ray starting on a triangle hits it at
+/// `t = 0`. Among hits at the same `t`, the triangle added first is reported. See [`RayHit`] for
+/// the accuracy.
+///
+/// Errors: `UnprocessedModel` if the model is not built, `NonFinitePose` for a pose entry that is
+/// NaN, infinite or larger than 1e150, `NonFiniteCoordinate` for an origin coordinate that is NaN,
+/// infinite or larger than 1e150 or a direction coordinate that is NaN or infinite,
+/// `InvalidArgument` for a zero direction or a `max_t` that is negative or NaN (`max_t` may be
+/// infinite).
+///
+/// ```
+/// use pqp::{Model, Pose, Vec3, ray_cast};
+/// let square = Model::from_triangles([
+///     ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], 7),
+///     ([0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], 8),
+/// ])
+/// .unwrap();
+/// // Straight down through the shared diagonal: it hits (one of the two triangles).
+/// let o = Vec3::new(0.5, 0.5, 2.0);
+/// let hit = ray_cast(&square, &Pose::identity(), &o, &Vec3::new(0.0, 0.0, -4.0), f64::INFINITY)
+///     .unwrap()
+///     .unwrap();
+/// assert_eq!(hit.t, 0.5);
+/// assert!(hit.triangle == 7 || hit.triangle == 8);
+/// assert_eq!(hit.normal, Vec3::new(0.0, 0.0, 1.0));
+/// ```
+pub fn ray_cast(
+    model: &Model,
+    pose: &Pose,
+    origin: &Vec3,
+    direction: &Vec3,
+    max_t: f64,
+) -> Result<Option<RayHit>, Error> {
+    let caster = RayCaster::new(model, pose, max_t)?;
+    RayCaster::check(origin, direction)?;
+    Ok(caster.cast(origin, direction))
+}
+
+/// [`ray_cast`] for many rays (`origins[i]`, `directions[i]`), on `threads` threads (0: as many as
+/// the machine has). Each answer is the one `ray_cast` gives for that ray.
+///
+/// Errors: as [`ray_cast`], for any ray (then nothing is cast), and `InvalidArgument` if the two
+/// slices differ in length; `OutOfMemory` if the answers cannot be allocated.
+pub fn ray_cast_batch(
+    model: &Model,
+    pose: &Pose,
+    origins: &[Vec3],
+    directions: &[Vec3],
+    max_t: f64,
+    threads: usize,
+) -> Result<Vec<Option<RayHit>>, Error> {
+    if origins.len() != directions.len() {
+        return Err(Error::InvalidArgument);
+    }
+    let caster = RayCaster::new(model, pose, max_t)?;
+    for (o, d) in origins.iter().zip(directions) {
+        RayCaster::check(o, d)?;
+    }
+    let mut out = Vec::new();
+    out.try_reserve_exact(origins.len())
+        .map_err(|_| Error::OutOfMemory)?;
+    out.resize(origins.len(), None);
+    caster.cast_all(&|i| (origins[i], directions[i]), threads, &mut out, &|h| h);
+    Ok(out)
+}
+
+/// Rays per work item of a batch: enough to make taking one cheap beside casting them.
+const BATCH_CHUNK: usize = 64;
+
+/// Most threads a batch starts (a thread count beyond any machine is a caller's mistake, not a
+/// request for thousands of threads).
+const MAX_THREADS: usize = 256;
+
+impl RayCaster<'_> {
+    /// Casts ray `i` (`ray(i)`, already checked) for every slot `i` of `out` and stores
+    /// `put(answer)` there, on `threads` threads (0: the machine's), the calling thread included.
+    /// The rays go in chunks to whichever thread is free; a thread that cannot be started leaves
+    /// its share to the others.
+    pub(crate) fn cast_all<O: Send>(
+        &self,
+        ray: &(dyn Fn(usize) -> (Vec3, Vec3) + Sync),
+        threads: usize,
+        out: &mut [O],
+        put: &(dyn Fn(Option<RayHit>) -> O + Sync),
+    ) {
+        let threads = match threads {
+            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+            n => n,
+        }
+        .min(out.len().div_ceil(BATCH_CHUNK))
+        .min(MAX_THREADS);
+        let work = Mutex::new(out.chunks_mut(BATCH_CHUNK).enumerate());
+        let run = || {
+            loop {
+                // A poisoned lock means another worker panicked: the scope will report it.
+                let Some((c, chunk)) = work.lock().ok().and_then(|mut w| w.next()) else {
+                    return;
+                };
+                for (j, slot) in chunk.iter_mut().enumerate() {
+                    let (o, d) = ray(c * BATCH_CHUNK + j);
+                    *slot = put(self.cast(&o, &d));
+                }
+            }
+        };
+        std::thread::scope(|s| {
+            for _ in 1..threads {
+                // A thread that cannot be started: the others do its share.
+                let _ = std::thread::Builder::new().spawn_scoped(s, run);
+            }
+            run();
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::{Random, Rng};
+
+    /// The search against every triangle tested in turn with the same kernel: bit for bit the same
+    /// answer (the traversal loses nothing), on random soups and closed meshes, at random poses.
+    #[test]
+    fn search_equals_testing_every_triangle() {
+        let mut r = Rng(41);
+        for iter in 0..60 {
+            let n = 1 + r.below(300);
+            let size = [0.05, 0.5, 3.0][iter % 3];
+            let tris: Vec<(Tri, i32)> = (0..n)
+                .map(|i| {
+                    let c = Vec3::from(r.point(1.0));
+                    let t = [0, 1, 2].map(|_| c + Vec3::from(r.point(size)));
+                    (t, i as i32)
+                })
+                .collect();
+            let model = Model::from_triangles(
+                tris.iter()
+                    .map(|(t, id)| (t[0].into(), t[1].into(), t[2].into(), *id)),
+            )
+            .unwrap();
+            let bvh = model.bvh().unwrap();
+            for _ in 0..200 {
+                let o = Vec3::from(r.point(2.5));
+                let d = Vec3::from(r.direction()) * r.log_uniform(1e-3, 1e3);
+                let max_t = if r.below(4) == 0 {
+                    r.range(0.0, 3.0)
+                } else {
+                    f64::INFINITY
+                };
+                let ray = LocalRay::new(o, d, bvh.scale);
+                let fast = ray
+                    .search(bvh, max_t, |t| t <= max_t)
+                    .map(|b| (b.t, b.slot));
+                let mut brute: Option<(f64, usize, u32)> = None;
+                for slot in 0..bvh.num_tris() {
+                    if let Some(t) = ray.hit(&bvh.tri(slot)) {
+                        let a = bvh.added[slot];
+                        if t <= max_t
+                            && brute.is_none_or(|(bt, _, ba)| t < bt || (t == bt && a < ba))
+                        {
+                            brute = Some((t, slot, a));
+                        }
+                    }
+                }
+                assert_eq!(fast, brute.map(|(t, s, _)| (t, s)), "{o:?} {d:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn scaling_helpers() {
+        for &x in &[1.0, 3.5e-310, 1e-300, 7e200, f64::MAX] {
+            let (v, k) = unit_scale(&Vec3::new(x, -x / 3.0, 0.0));
+            assert!((1.0..2.0).contains(&v.amax()), "{x}");
+            assert_eq!(scaled(v.x, k), x);
+        }
+        assert_eq!(upper_scaled(1e-300, -500), f64::from_bits(1));
+        assert_eq!(scaled(3.0, 2000), f64::INFINITY);
+    }
+}
