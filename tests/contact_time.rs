@@ -437,3 +437,42 @@ fn bad_inputs_are_refused() {
     m.start.rotation[(0, 1)] = 4e-7;
     assert_eq!(toc(&sphere, &m, &sphere, &away, 0.1), Ok(()));
 }
+
+#[test]
+fn a_graze_just_inside_or_outside_the_tolerance_is_decided_right() {
+    // A bar hanging from a pivot swings through 120 degrees over a plate; its lowest reach,
+    // H - sqrt(L^2 + w^2) above the plate, is set just below or just above the tolerance, inside
+    // the 0.1% the advancement steps keep in hand. (Dips that the steps jump over, which only the
+    // bisection of doubtful intervals finds, are tested on synthetic distances in the unit tests
+    // of src/query/contact_time.rs.)
+    let (w, len, tol) = (0.05, 1.0, 0.01);
+    let bar = cuboid([-w, -w, -len], [w, w, 0.0]).model();
+    let plate = cuboid([-5.0, -5.0, -0.001], [5.0, 5.0, 0.0]).model();
+    let swing = |h: f64| {
+        let at = |deg: f64| Pose {
+            rotation: axis_angle_rotation(&Vec3::y(), deg.to_radians()),
+            translation: Vec3::new(0.0, 0.0, h),
+        };
+        motion(at(-60.0), at(60.0))
+    };
+    for (side, expect) in [(-1.0, true), (1.0, false)] {
+        let lowest = tol * (1.0 + side * 4e-4);
+        let h = lowest + (len * len + w * w).sqrt();
+        let scene = Scene {
+            m1: &plate,
+            mo1: motion(Pose::identity(), Pose::identity()),
+            m2: &bar,
+            mo2: swing(h),
+        };
+        let c = scene.check(tol, 3000);
+        assert_eq!(c.contact, expect, "{c:?}");
+        // The reference's own minimum is where it should be.
+        let least = (0..=3000)
+            .map(|k| scene.distance(k as f64 / 3000.0))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            least >= lowest - 1e-12 && least < lowest + 1e-5,
+            "{least} vs {lowest}"
+        );
+    }
+}

@@ -152,21 +152,43 @@ pub fn time_of_contact(
         options: DistanceOptions::exact(),
         steps: 0,
     };
-    let tol = tolerance;
+    match advance(tolerance, speed, |t| probe.at(t))? {
+        // The time found was the last one measured: `probe.result` holds its closest pair.
+        Some(t) => Ok(probe.contact(t)),
+        None => Ok(ContactTime {
+            contact: false,
+            toc: f64::INFINITY,
+            distance: f64::INFINITY,
+            id1: -1,
+            id2: -1,
+            point1: Vec3::repeat(f64::NAN),
+            point2: Vec3::repeat(f64::NAN),
+            steps: probe.steps,
+        }),
+    }
+}
+
+/// Conservative advancement (module documentation) on a distance `measure(t)` that is
+/// `speed`-Lipschitz in t: the time of contact, which is the last time measured, or `None`.
+fn advance(
+    tol: f64,
+    speed: f64,
+    mut measure: impl FnMut(f64) -> Result<f64, Error>,
+) -> Result<Option<f64>, Error> {
     let mut t = 0.0;
-    let mut d = probe.at(t)?;
+    let mut d = measure(t)?;
     // Intervals between measurements that the cones do not prove clear of the tolerance.
     let mut doubtful = Vec::new();
     loop {
         if d <= tol {
-            return Ok(probe.contact(t));
+            return Ok(Some(t));
         }
         if (d - tol) / speed > 1.0 - t {
             // Clear of the tolerance up to t = 1 (also when B = 0).
             break;
         }
         let next = (t + (d - MARGIN * tol) / speed).max(t.next_up()).min(1.0);
-        let d_next = probe.at(next)?;
+        let d_next = measure(next)?;
         if d_next > tol && !clear(d, d_next, tol, speed * (next - t)) {
             doubtful.push((t, d, next, d_next));
         }
@@ -176,20 +198,38 @@ pub fn time_of_contact(
         }
     }
     for (a, da, b, db) in doubtful {
-        if let Some(t) = probe.bisect(a, da, b, db, tol, speed)? {
-            return Ok(probe.contact(t));
+        if let Some(t) = bisect((a, da), (b, db), tol, speed, &mut measure)? {
+            return Ok(Some(t));
         }
     }
-    Ok(ContactTime {
-        contact: false,
-        toc: f64::INFINITY,
-        distance: f64::INFINITY,
-        id1: -1,
-        id2: -1,
-        point1: Vec3::repeat(f64::NAN),
-        point2: Vec3::repeat(f64::NAN),
-        steps: probe.steps,
-    })
+    Ok(None)
+}
+
+/// Searches `[a, b]`, between measurements `da`, `db` above `tol`, by bisection (module
+/// documentation): the first midpoint found within the tolerance, or `None` when the interval is
+/// proven clear (to within `GRAZE`). Earlier halves are searched first.
+fn bisect(
+    (a, da): (f64, f64),
+    (b, db): (f64, f64),
+    tol: f64,
+    speed: f64,
+    measure: &mut impl FnMut(f64) -> Result<f64, Error>,
+) -> Result<Option<f64>, Error> {
+    let mut stack = vec![(a, da, b, db)];
+    while let Some((a, da, b, db)) = stack.pop() {
+        let width = speed * (b - a);
+        let mid = 0.5 * (a + b);
+        if clear(da, db, tol, width) || width <= GRAZE * tol || mid <= a || mid >= b {
+            continue;
+        }
+        let dm = measure(mid)?;
+        if dm <= tol {
+            return Ok(Some(mid));
+        }
+        stack.push((mid, dm, b, db));
+        stack.push((a, da, mid, dm));
+    }
+    Ok(None)
 }
 
 /// Whether the distance is proven above `tol` between two measurements `da`, `db` (both above it)
@@ -248,33 +288,75 @@ impl Probe<'_> {
             steps: self.steps,
         }
     }
+}
 
-    /// Searches `[a, b]`, between measurements `da`, `db` above `tol`, by bisection (module
-    /// documentation): the first midpoint found within the tolerance, or `None` when the interval
-    /// is proven clear (to within `GRAZE`). Earlier halves are searched first.
-    fn bisect(
-        &mut self,
-        a: f64,
-        da: f64,
-        b: f64,
-        db: f64,
-        tol: f64,
-        speed: f64,
-    ) -> Result<Option<f64>, Error> {
-        let mut stack = vec![(a, da, b, db)];
-        while let Some((a, da, b, db)) = stack.pop() {
-            let width = speed * (b - a);
-            let mid = 0.5 * (a + b);
-            if clear(da, db, tol, width) || width <= GRAZE * tol || mid <= a || mid >= b {
-                continue;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Runs `advance` on `d` and checks the guarantees on a fine grid: the answer, and the
+    /// number of measurements.
+    fn run(d: impl Fn(f64) -> f64, tol: f64, speed: f64) -> (Option<f64>, usize) {
+        let mut count = 0;
+        let found = advance(tol, speed, |t| {
+            count += 1;
+            Ok(d(t))
+        })
+        .unwrap();
+        match found {
+            Some(toc) => {
+                assert!(d(toc) <= tol);
+                for k in 0..10_000 {
+                    let t = toc * k as f64 / 10_000.0;
+                    assert!(d(t) > MARGIN * tol, "{t}");
+                }
             }
-            let dm = self.at(mid)?;
-            if dm <= tol {
-                return Ok(Some(mid));
+            None => {
+                for k in 0..=10_000 {
+                    assert!(d(k as f64 / 10_000.0) > tol * (1.0 - GRAZE));
+                }
             }
-            stack.push((mid, dm, b, db));
-            stack.push((a, da, mid, dm));
         }
-        Ok(None)
+        (found, count)
+    }
+
+    #[test]
+    fn a_dip_between_the_steps_is_found_by_the_bisection() {
+        // V-shaped dips at the full speed bound, their bottom inside the 0.1% the steps keep in
+        // hand, at many places: the steps jump over them, the bisection of the doubtful
+        // intervals must find them (and certify the ones that stay just above the tolerance).
+        let (tol, speed) = (0.01, 3.0);
+        let mut found_by_bisection = 0;
+        for k in 1..200 {
+            let at = k as f64 / 200.0;
+            for (bottom, expect) in [(0.9995, true), (1.0003, false)] {
+                let d = |t: f64| (tol * bottom + speed * (t - at).abs()).min(2.0);
+                let (found, count) = run(d, tol, speed);
+                assert_eq!(found.is_some(), expect, "dip at {at}, bottom {bottom}");
+                if let Some(toc) = found {
+                    assert!((toc - at).abs() < 1e-3 * tol / speed, "{toc} vs {at}");
+                    // Not the last advancement step: found by the bisection.
+                    found_by_bisection += usize::from(count > 3);
+                }
+            }
+        }
+        assert!(found_by_bisection > 100, "{found_by_bisection}");
+    }
+
+    #[test]
+    fn steps_are_bounded_and_the_end_is_checked() {
+        let (tol, speed) = (0.01, 1.0);
+        // Sliding just above the tolerance the whole way: about 1000 B / tol steps at most.
+        let (found, count) = run(|_| tol * 1.01, tol, speed);
+        assert!(
+            found.is_none() && count <= (1000.0 * speed / tol) as usize + 1,
+            "{count}"
+        );
+        // Within the tolerance only at t = 1.
+        let (found, _) = run(|t| tol + speed * (1.0 - t), tol, speed);
+        assert_eq!(found, Some(1.0));
+        // Already within at the start; no motion.
+        assert_eq!(run(|_| tol, tol, speed).0, Some(0.0));
+        assert_eq!(run(|_| 2.0 * tol, tol, 0.0), (None, 1));
     }
 }
