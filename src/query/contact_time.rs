@@ -132,7 +132,7 @@ pub fn time_of_contact(
     motion2: &Motion,
     tolerance: f64,
 ) -> Result<ContactTime, Error> {
-    if !(tolerance > 0.0) {
+    if tolerance.is_nan() || tolerance <= 0.0 {
         return Err(Error::InvalidArgument);
     }
     let reach1 = reach(m1)?;
