@@ -10,16 +10,20 @@
 //!
 //! Advancement: at t with `d(t) > tol`, every t' up to `t + (d(t) - 0.999 tol) / B` has
 //! `d(t') >= 0.999 tol`, so the search jumps there and measures again; it stops at the first
-//! measured `d <= tol` (the time of contact). Each jump is at least `0.001 tol / B`, so at most
-//! `1000 B / tol + 1` measurements are made (the bound is reached only when the distance stays just
-//! above the tolerance for the whole motion; approaching motions converge in a few steps).
+//! measured `d <= tol` (the time of contact). Each jump is at least `0.001 tol / B` (and never
+//! shorter than to the next double), so at most `1000 B / tol + 1` advancement steps are made (the
+//! bound is reached only when the distance stays just above the tolerance for the whole motion;
+//! approaching motions converge in a few steps).
 //!
 //! Certifying no contact: the jumps alone prove `d > 0.999 tol`, not `d > tol`. Between two
 //! measurements at a and b both above tol, the two Lipschitz cones prove `d > tol` on `[a, b]`
 //! when `(d(a) - tol) + (d(b) - tol) > B (b - a)`. Intervals that fail this are bisected, with a
 //! measurement at each midpoint, until they pass, a midpoint is within the tolerance (the time of
 //! contact: every earlier time is above 0.999 tol already), or `B (b - a) <= GRAZE tol`, where the
-//! distance is proven above `(1 - GRAZE / 2) tol` and the interval is taken as clear.
+//! distance is proven above `(1 - GRAZE / 2) tol` and the interval is taken as clear. Only the
+//! stretches where a step ended within 0.1% of the tolerance are doubtful, each at most
+//! `0.001 tol / B` long in its uncertain part; a graze that stays within a relative 1e-9 above the
+//! tolerance across it costs up to about `2e6` measurements there, a clear dip a few dozen.
 
 use super::{DistanceOptions, DistanceResult, distance_into};
 use crate::error::Error;
