@@ -64,4 +64,5 @@ pub use query::{
     tolerance, tolerance_batch, tolerance_into, winding_number, within_distance,
     within_distance_into,
 };
+pub use query::{ContactTime, Motion, time_of_contact};
 pub use query::{RayHit, ray_cast, ray_cast_batch};

@@ -154,3 +154,91 @@ pub(crate) fn least(a: f64, b: f64) -> f64 {
 pub(crate) fn most(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
+
+/// How far a matrix may be from orthonormal and still be taken as a rotation by
+/// [`nearest_rotation`]: each of its singular values within this of 1. Rotations written with 6
+/// significant digits (the shared `.path` files) are within 1e-6 (torus1.path: 9.5e-7 at most).
+pub const ROTATION_TOLERANCE: f64 = 1e-6;
+
+/// The proper rotation nearest to `m` (its orthonormal polar factor `U V^T`, from the singular
+/// value decomposition `m = U S V^T`), or `Err(InvalidArgument)` unless `m` is a rotation to
+/// within [`ROTATION_TOLERANCE`]: every singular value within that of 1, and a positive
+/// determinant (a reflection is refused). `m` is taken finite.
+pub fn nearest_rotation(m: &Mat3) -> Result<Mat3, Error> {
+    let svd = m.svd(true, true);
+    let orthonormal = svd
+        .singular_values
+        .iter()
+        .all(|s| (s - 1.0).abs() <= ROTATION_TOLERANCE);
+    match (svd.u, svd.v_t) {
+        (Some(u), Some(v_t)) if orthonormal && m.determinant() > 0.0 => Ok(u * v_t),
+        _ => Err(Error::InvalidArgument),
+    }
+}
+
+/// The rotation by `angle` (radians, right-handed) about the unit vector `axis` (Rodrigues'
+/// formula).
+pub fn axis_angle_rotation(axis: &Vec3, angle: f64) -> Mat3 {
+    let k = axis.cross_matrix();
+    let (s, c) = angle.sin_cos();
+    Mat3::identity() + k * s + k * k * (1.0 - c)
+}
+
+/// The logarithm of a rotation `q` as a unit axis and an angle in `[0, pi]`, the shorter way:
+/// `q = axis_angle_rotation(axis, angle)`. For an angle of exactly pi (both ways are as short) the
+/// axis is the one whose largest-magnitude component is positive; for angle 0 it is the x axis.
+pub fn rotation_log(q: &Mat3) -> (Vec3, f64) {
+    // The skew part of q is sin(angle) [axis]x, its trace 1 + 2 cos(angle).
+    let w = 0.5 * Vec3::new(q.m32 - q.m23, q.m13 - q.m31, q.m21 - q.m12);
+    let c = (0.5 * (q.trace() - 1.0)).clamp(-1.0, 1.0);
+    let s = w.norm();
+    let angle = s.atan2(c);
+    if s == 0.0 && c > 0.0 {
+        return (Vec3::x(), 0.0);
+    }
+    if c > 0.0 {
+        // Below pi/2 the skew part is well conditioned.
+        return (w / s, angle);
+    }
+    // Near pi sin(angle) vanishes; the symmetric part (q + q^T)/2 = c I + (1 - c) axis axis^T gives
+    // the axis up to sign through its column of largest diagonal entry (that component is then
+    // positive), and the skew part gives the sign.
+    let a = (0.5 * (q + q.transpose()) - Mat3::identity() * c) / (1.0 - c);
+    let j = (0..3)
+        .max_by(|&i, &k| a[(i, i)].total_cmp(&a[(k, k)]).then(k.cmp(&i)))
+        .unwrap_or(0);
+    let mut axis = a.column(j).into_owned();
+    axis /= axis.norm();
+    if axis.dot(&w) < 0.0 {
+        axis = -axis;
+    }
+    (axis, angle)
+}
+
+/// A rotation turning at constant angular velocity about a fixed axis from `start` (at t = 0) to
+/// `end` (at t = 1), the shorter way: `R(t) = start exp(t log(start^T end))`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotationPath {
+    /// The rotation at t = 0 (projected to the nearest rotation).
+    pub start: Mat3,
+    /// The axis of the relative turn, in `start`'s frame (unit).
+    pub axis: Vec3,
+    /// The angle of the relative turn, in `[0, pi]`: the angular speed.
+    pub angle: f64,
+}
+
+impl RotationPath {
+    /// The path from `start` to `end`, each first projected to its [`nearest_rotation`];
+    /// `Err(InvalidArgument)` if either is not a rotation to within [`ROTATION_TOLERANCE`]. A
+    /// relative turn of exactly pi turns as [`rotation_log`] says.
+    pub fn new(start: &Mat3, end: &Mat3) -> Result<RotationPath, Error> {
+        let (start, end) = (nearest_rotation(start)?, nearest_rotation(end)?);
+        let (axis, angle) = rotation_log(&(start.transpose() * end));
+        Ok(RotationPath { start, axis, angle })
+    }
+
+    /// The rotation at time `t`.
+    pub fn at(&self, t: f64) -> Mat3 {
+        self.start * axis_angle_rotation(&self.axis, t * self.angle)
+    }
+}

@@ -189,3 +189,8 @@ fn demos_run() {
         assert!(text.contains("signed distance"), "{text}");
     }
 }
+
+#[test]
+fn time_of_contact_from_c() {
+    c_program("contact_time");
+}

@@ -46,6 +46,8 @@ mod point;
 mod batch;
 // Ray casting.
 mod ray;
+// Time of first contact of moving models.
+mod contact_time;
 // Convex polyhedra.
 mod convex;
 // Single triangles and segments (TriDist.h).
@@ -57,6 +59,7 @@ mod saved;
 
 pub use batch::*;
 pub use collide::*;
+pub use contact_time::*;
 pub use convex::*;
 pub use distance::*;
 pub use geometry::*;

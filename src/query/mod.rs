@@ -1,5 +1,5 @@
-//! The three proximity queries and ray casting (`ray.rs`), one file each, and what they share
-//! (`traversal.rs`).
+//! The three proximity queries, ray casting (`ray.rs`) and time of contact (`contact_time.rs`), one
+//! file each, and what they share (`traversal.rs`).
 //!
 //! Every query takes two built models, each with its pose, and works in model 1's frame: model 2's
 //! volumes and triangles are brought there by the relative pose. Results are plain values that the
@@ -9,6 +9,7 @@
 
 mod batch;
 mod collide;
+mod contact_time;
 mod distance;
 mod front;
 #[cfg(test)]
@@ -29,6 +30,7 @@ pub(crate) use batch::answer_all;
 pub(crate) use batch::{Workers, collide_batch_with, distance_batch_with, tolerance_batch_with};
 pub use batch::{collide_batch, distance_batch, tolerance_batch};
 pub use collide::{CollideResult, ContactMode, ContactPair, collide, collide_into};
+pub use contact_time::{ContactTime, Motion, time_of_contact};
 pub use distance::{DistanceOptions, DistanceResult, distance, distance_into};
 pub use point::{PointResult, closest_point, signed_distance};
 pub(crate) use ray::RayCaster;

@@ -1,0 +1,141 @@
+//! Time of first contact: a thin plate thrown through a wall in one step is still caught, and the
+//! tumbling tori of /work/shared/models are swept between frames of their path (their rotations
+//! carry 6 digits), with the time per query and the number of advancement steps.
+//!
+//! `cargo run --release --example time_of_contact [models-dir]`
+
+use pqp::{DistanceOptions, Model, Motion, Pose, distance, time_of_contact};
+use std::time::Instant;
+
+/// Numbers of a whitespace-separated text file.
+fn numbers(path: &std::path::Path) -> Vec<f64> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect()
+}
+
+/// A `.tris` model (first number the count, then nine coordinates per triangle).
+fn model(path: &std::path::Path) -> Model {
+    let v = numbers(path);
+    Model::from_triangles(v[1..].chunks_exact(9).enumerate().map(|(i, c)| {
+        (
+            [c[0], c[1], c[2]],
+            [c[3], c[4], c[5]],
+            [c[6], c[7], c[8]],
+            i as i32,
+        )
+    }))
+    .unwrap()
+}
+
+/// A `.path` file (first number the count, then a rotation row by row and a translation).
+fn path(path: &std::path::Path) -> Vec<Pose> {
+    let v = numbers(path);
+    v[1..]
+        .chunks_exact(12)
+        .map(|c| {
+            Pose::new(
+                [[c[0], c[1], c[2]], [c[3], c[4], c[5]], [c[6], c[7], c[8]]],
+                [c[9], c[10], c[11]],
+            )
+        })
+        .collect()
+}
+
+/// A flat box of half extents `h` centred on the origin (12 triangles).
+fn slab(h: [f64; 3]) -> Model {
+    let c = |i: usize| {
+        let s = |bit: usize, k: usize| if i & bit == 0 { -h[k] } else { h[k] };
+        [s(1, 0), s(2, 1), s(4, 2)]
+    };
+    let quads = [
+        [0, 1, 3, 2],
+        [4, 6, 7, 5],
+        [0, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+    ];
+    Model::from_triangles(quads.iter().enumerate().flat_map(|(k, q)| {
+        let k = 2 * k as i32;
+        [
+            (c(q[0]), c(q[1]), c(q[2]), k),
+            (c(q[0]), c(q[2]), c(q[3]), k + 1),
+        ]
+    }))
+    .unwrap()
+}
+
+fn main() {
+    let dir = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "/work/shared/models".into());
+    let dir = std::path::Path::new(&dir);
+
+    // A plate 1e-3 thick thrown 100 units through a wall 1e-3 thick, spinning as it goes.
+    let wall = slab([0.0005, 1.0, 1.0]);
+    let plate = slab([0.0005, 0.5, 0.5]);
+    let still = Motion::new(Pose::identity(), Pose::identity());
+    let throw = Motion::new(
+        Pose::from_translation([-50.0, 0.0, 0.0]),
+        Pose::new(
+            [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]],
+            [50.0, 0.0, 0.0],
+        ),
+    );
+    let c = time_of_contact(&wall, &still, &plate, &throw, 1e-4).unwrap();
+    println!(
+        "thin plate: contact {} at t = {:.9} (distance {:.3e}, {} steps)",
+        c.contact, c.toc, c.distance, c.steps
+    );
+
+    let (t1, t2) = (
+        model(&dir.join("torus1.tris")),
+        model(&dir.join("torus2.tris")),
+    );
+    let (p1, p2) = (
+        path(&dir.join("torus1.path")),
+        path(&dir.join("torus2.path")),
+    );
+    let n = p1.len().min(p2.len());
+    // One exact distance query per frame, for scale.
+    let start = Instant::now();
+    for k in 0..n {
+        distance(&t1, &p1[k], &t2, &p2[k], &DistanceOptions::exact()).unwrap();
+    }
+    let per_distance = start.elapsed().as_secs_f64() / n as f64;
+    println!(
+        "tori, {n} frames: exact distance {:.1} us per query (fresh result each)",
+        per_distance * 1e6
+    );
+    println!(
+        "| frames apart | tolerance | queries | contact (at t = 0) | time per query | steps: mean | max |"
+    );
+    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    for stride in [1, 10, 100] {
+        for tol in [0.01, 0.001] {
+            let (mut queries, mut contacts, mut steps, mut most) = (0u64, 0u64, 0u64, 0u64);
+            let mut at_start = 0u64;
+            let start = Instant::now();
+            for a in (0..n - stride).step_by(stride.max(4)) {
+                let m1 = Motion::new(p1[a], p1[a + stride]);
+                let m2 = Motion::new(p2[a], p2[a + stride]);
+                let c = time_of_contact(&t1, &m1, &t2, &m2, tol).unwrap();
+                queries += 1;
+                contacts += c.contact as u64;
+                at_start += (c.toc == 0.0) as u64;
+                steps += c.steps;
+                most = most.max(c.steps);
+            }
+            let per = start.elapsed().as_secs_f64() / queries as f64;
+            println!(
+                "| {stride} | {tol} | {queries} | {contacts} ({at_start}) | {:.1} us ({:.1}x a distance) | {:.1} | {most} |",
+                per * 1e6,
+                per / per_distance,
+                steps as f64 / queries as f64
+            );
+        }
+    }
+}
