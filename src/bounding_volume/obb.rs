@@ -14,6 +14,19 @@ pub struct Obb {
     pub half: Vec3,
 }
 
+/// A box posed in another model's frame (see [`OverlapVolume::pose`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PosedObb {
+    /// The axes (columns) in the other frame.
+    axes: Mat3,
+    /// The centre in the other frame.
+    center: Vec3,
+    /// Half extents along the axes.
+    half: Vec3,
+    /// The magnitudes its coordinates were computed from, for the rounding allowance.
+    magnitude: f64,
+}
+
 /// Rounding allowance of the separation test, relative to the magnitudes that enter it. It also
 /// keeps near-parallel edge pairs, whose cross-product axis is nearly zero and all of whose terms are
 /// rounding noise, from ever separating overlapping boxes.
@@ -126,23 +139,36 @@ impl BoundingVolume for Obb {
 }
 
 impl OverlapVolume for Obb {
+    type Posed = PosedObb;
+
+    #[inline]
+    fn pose(b: &Self, rel: &RelPose) -> PosedObb {
+        PosedObb {
+            axes: rel.rot * b.axes,
+            center: rel.apply(&b.center),
+            half: b.half,
+            magnitude: abs_sum(&b.center) + abs_sum(&rel.trans) + b.half.sum(),
+        }
+    }
+
     /// Separating axis test on the 15 candidate axes: the 3 face normals of each box and the 9 cross
     /// products of an edge of each. Every test allows a rounding slack, so touching boxes overlap.
     #[inline]
-    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
+    fn overlap_posed(a: &Self, b: &PosedObb, _rel: &RelPose) -> bool {
         let (ha, hb) = (&a.half, &b.half);
-        // Work in a's box frame: b's axes are the columns of R = A^T rot B, its centre is t.
-        let m = a.axes.tr_mul(&rel.rot);
-        let t = m * b.center + a.axes.tr_mul(&(rel.trans - a.center));
-        let slack = OVERLAP_SLACK
-            * (abs_sum(&a.center) + abs_sum(&b.center) + abs_sum(&rel.trans) + ha.sum() + hb.sum())
-            + UNDERFLOW_SLACK;
+        // Work in a's box frame: b's axes are the columns of R = A^T B', its centre is t (B' and
+        // the centre posed in a's model frame once, for all the boxes b is tested against).
+        let d = b.center - a.center;
+        let slack = OVERLAP_SLACK * (abs_sum(&a.center) + ha.sum() + b.magnitude) + UNDERFLOW_SLACK;
 
         // a's face normals, one row of R at a time: most separated pairs go at the first.
+        let mut t = Vec3::zeros();
         let mut r = Mat3::zeros();
         let mut ar = Mat3::zeros();
         for i in 0..3 {
-            let row = m.row(i) * b.axes;
+            let axis = a.axes.column(i);
+            t[i] = axis.dot(&d);
+            let row = axis.transpose() * b.axes;
             let arow = row.abs();
             if t[i].abs() > ha[i] + arow.dot(&hb.transpose()) + slack {
                 return false;

@@ -1,6 +1,6 @@
 //! Collision: which triangle pairs of two posed models overlap.
 
-use super::traversal::{LeafCache, NodePair, PairStack, descend_first};
+use super::traversal::{NodePair, PairStack};
 use super::{Stats, prepare};
 use crate::bounding_volume::OverlapVolume;
 use crate::bvh::{Bvh, NodeRef};
@@ -8,6 +8,7 @@ use crate::error::Error;
 use crate::geometry::{Tri, tri_overlap};
 use crate::math::{Pose, RelPose};
 use crate::model::{CollisionVolume, Model};
+use std::mem::MaybeUninit;
 use std::time::Instant;
 
 /// Report every overlapping pair, or stop at the first (PQP's `PQP_ALL_CONTACTS` = 1 and
@@ -156,7 +157,7 @@ fn search<V: OverlapVolume>(
 ) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
-    let (mut leaf1, mut leaf2) = (LeafCache::default(), LeafCache::default());
+    let (mut nodes1, mut posed2) = (NodeCache::new(), NodeCache::new());
     stack.push(NodePair {
         a: b1.root(),
         b: b2.root(),
@@ -238,15 +239,20 @@ fn search<V: OverlapVolume>(
                 continue;
             }
         }
-        let (va, vb) = (
-            leaf1.get(p.a, |r| volume(b1, r)),
-            leaf2.get(p.b, |r| volume(b2, r)),
-        );
+        let (va, size_a) = *nodes1.get(p.a, || {
+            let v = volume(b1, p.a);
+            (v, v.size())
+        });
+        let &(vb, size_b) = posed2.get(p.b, || {
+            let v = volume(b2, p.b);
+            (V::pose(&v, rel), v.size())
+        });
         stats.bv_tests += 1;
-        if !V::overlap(&va, &vb, rel) {
+        if !V::overlap_posed(&va, &vb, rel) {
             continue;
         }
-        if descend_first(p.a, p.b, &va, &vb) {
+        // Descend the larger volume, or whichever is not a leaf (as `descend_first`).
+        if p.b.is_leaf() || (!p.a.is_leaf() && size_a >= size_b) {
             let [c0, c1] = b1.children(p.a);
             stack.push(NodePair { a: c1, ..p });
             stack.push(NodePair { a: c0, ..p });
@@ -257,4 +263,40 @@ fn search<V: OverlapVolume>(
         }
     }
     stats
+}
+
+/// Slots of a [`NodeCache`].
+const NODE_SLOTS: usize = 64;
+
+/// Values computed for the nodes of one hierarchy met recently (inner nodes and leaves), in a
+/// small direct-mapped table: the depth-first search tests one node against a run of the other
+/// model's nodes while it descends the other model, so a node's volume (posed, for model 2) and
+/// size are computed once for the run rather than at every test. Lives in the query, on the
+/// stack; only its keys are initialised.
+struct NodeCache<T> {
+    /// The raw value of the node whose value each slot holds; `i32::MIN` (no node's: a model has
+    /// fewer than `i32::MAX` triangles): none.
+    keys: [i32; NODE_SLOTS],
+    values: [MaybeUninit<T>; NODE_SLOTS],
+}
+
+impl<T: Copy> NodeCache<T> {
+    fn new() -> Self {
+        NodeCache {
+            keys: [i32::MIN; NODE_SLOTS],
+            values: [const { MaybeUninit::uninit() }; NODE_SLOTS],
+        }
+    }
+
+    /// Node `r`'s value, computed by `make` when its slot holds another node's.
+    #[inline(always)]
+    fn get(&mut self, r: NodeRef, make: impl FnOnce() -> T) -> &T {
+        let i = (r.raw() as u32 as usize) % NODE_SLOTS;
+        if self.keys[i] != r.raw() {
+            self.values[i] = MaybeUninit::new(make());
+            self.keys[i] = r.raw();
+        }
+        // SAFETY: a slot's key is set only together with its value (just above, or before).
+        unsafe { self.values[i].assume_init_ref() }
+    }
 }
