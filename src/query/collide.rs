@@ -107,10 +107,8 @@ pub fn collide_into(
     result.pairs.clear();
     // Two triangles: test them at once (their volumes, computed from them, would cost about as
     // much as the test).
-    let leaf_pair = |ta: usize, tb: usize| {
-        let t2 = b2.tri(tb);
-        let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
-        tri_overlap(&b1.tri(ta), &moved).then(|| ContactPair {
+    let leaf_pair = |ta: usize, tb: usize, moved: &Tri| {
+        tri_overlap(&b1.tri(ta), moved).then(|| ContactPair {
             id1: b1.ids[ta],
             id2: b2.ids[tb],
         })
@@ -123,6 +121,8 @@ pub fn collide_into(
 
 /// The search of [`collide_into`] (and of the self-collision query) on the models' collision
 /// volume (the swept sphere volumes if both models ask for them, else the boxes): see [`search`].
+/// `leaf_pair` gets the triangles' leaf slots and model 2's triangle posed by `rel` in model 1's
+/// frame (unposed when `same`).
 pub(super) fn search_pairs(
     pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
@@ -130,7 +130,7 @@ pub(super) fn search_pairs(
     rel: &RelPose,
     mode: ContactMode,
     same: bool,
-    leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
+    leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
 ) -> Stats {
     if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv {
         search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.ssv(r))
@@ -152,12 +152,16 @@ fn search<V: OverlapVolume>(
     rel: &RelPose,
     mode: ContactMode,
     same: bool,
-    mut leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
+    mut leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
     let (mut nodes1, mut posed2) = (NodeCache::new(), NodeCache::new());
+    // Model 1's triangles posed in model 2's frame, and model 2's in model 1's.
+    let (mut tris1, mut tris2) = (NodeCache::<Tri>::new(), NodeCache::<Tri>::new());
+    let to_1 = |t: Tri| t.map(|p| rel.apply(&p));
+    let to_2 = |t: Tri| t.map(|p| rel.apply_inverse(&p));
     stack.push(NodePair {
         a: b1.root(),
         b: b2.root(),
@@ -175,7 +179,13 @@ fn search<V: OverlapVolume>(
         }
         if p.a.is_leaf() && p.b.is_leaf() {
             stats.tri_tests += 1;
-            if let Some(pair) = leaf_pair(p.a.triangle(), p.b.triangle()) {
+            let tb = p.b.triangle();
+            let moved = if same {
+                b2.tri(tb)
+            } else {
+                *tris2.get(p.b, || to_1(b2.tri(tb)))
+            };
+            if let Some(pair) = leaf_pair(p.a.triangle(), tb, &moved) {
                 pairs.push(pair);
                 if mode == ContactMode::First {
                     break;
@@ -210,17 +220,11 @@ fn search<V: OverlapVolume>(
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
         if p.a.is_leaf() || p.b.is_leaf() {
             let direct = if p.b.is_leaf() {
-                let t = b2.tri(p.b.triangle());
-                let moved: Tri = [rel.apply(&t[0]), rel.apply(&t[1]), rel.apply(&t[2])];
-                V::overlap_triangle(&volume(b1, p.a), &moved)
+                let moved = tris2.get(p.b, || to_1(b2.tri(p.b.triangle())));
+                V::overlap_triangle(&volume(b1, p.a), moved)
             } else {
-                let t = b1.tri(p.a.triangle());
-                let moved: Tri = [
-                    rel.apply_inverse(&t[0]),
-                    rel.apply_inverse(&t[1]),
-                    rel.apply_inverse(&t[2]),
-                ];
-                V::overlap_triangle(&volume(b2, p.b), &moved)
+                let moved = tris1.get(p.a, || to_2(b1.tri(p.a.triangle())));
+                V::overlap_triangle(&volume(b2, p.b), moved)
             };
             if let Some(hit) = direct {
                 stats.bv_tests += 1;
