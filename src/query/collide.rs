@@ -243,20 +243,20 @@ fn search<V: OverlapVolume>(
                 continue;
             }
         }
-        let (va, size_a) = *nodes1.get(p.a, || {
+        let (va, size_a) = nodes1.get(p.a, || {
             let v = volume(b1, p.a);
             (v, v.size())
         });
-        let &(vb, size_b) = posed2.get(p.b, || {
+        let (vb, size_b) = posed2.get(p.b, || {
             let v = volume(b2, p.b);
             (V::pose(&v, rel), v.size())
         });
         stats.bv_tests += 1;
-        if !V::overlap_posed(&va, &vb, rel) {
+        if !V::overlap_posed(va, vb, rel) {
             continue;
         }
         // Descend the larger volume, or whichever is not a leaf (as `descend_first`).
-        if p.b.is_leaf() || (!p.a.is_leaf() && size_a >= size_b) {
+        if p.b.is_leaf() || (!p.a.is_leaf() && *size_a >= *size_b) {
             let [c0, c1] = b1.children(p.a);
             stack.push(NodePair { a: c1, ..p });
             stack.push(NodePair { a: c0, ..p });
