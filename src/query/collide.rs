@@ -221,7 +221,11 @@ fn search<V: OverlapVolume>(
         if p.a.is_leaf() || p.b.is_leaf() {
             let direct = if p.b.is_leaf() {
                 let moved = tris2.get(p.b, || to_1(b2.tri(p.b.triangle())));
-                V::overlap_triangle(&volume(b1, p.a), moved)
+                let (va, _) = nodes1.get(p.a, || {
+                    let v = volume(b1, p.a);
+                    (v, v.size())
+                });
+                V::overlap_triangle(va, moved)
             } else {
                 let moved = tris1.get(p.a, || to_2(b1.tri(p.a.triangle())));
                 V::overlap_triangle(&volume(b2, p.b), moved)
