@@ -17,7 +17,7 @@ mod rss;
 mod ssv;
 mod ssv_fit;
 
-pub use obb::Obb;
+pub use obb::{Obb, PosedObb};
 pub(crate) use rect_distance::rect_distance;
 pub(crate) use ssv::CompactSsv;
 pub(crate) use ssv::Want;
@@ -54,7 +54,20 @@ pub trait DistanceVolume: BoundingVolume {
 pub trait OverlapVolume: BoundingVolume {
     /// Whether `a` and `b` (with `b` posed by `rel` in `a`'s frame) may share a point. Never false
     /// when they do.
-    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool;
+    #[inline]
+    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
+        Self::overlap_posed(a, &Self::pose(b, rel), rel)
+    }
+
+    /// `b` (of the second model) as [`overlap_posed`](OverlapVolume::overlap_posed) takes it.
+    type Posed: Copy;
+
+    /// `b` posed by `rel`, once for all the volumes of the first model it is tested against.
+    fn pose(b: &Self, rel: &RelPose) -> Self::Posed;
+
+    /// [`overlap`](OverlapVolume::overlap) with `b` given as [`pose`](OverlapVolume::pose) made it
+    /// (with the same `rel`).
+    fn overlap_posed(a: &Self, b: &Self::Posed, rel: &RelPose) -> bool;
 
     /// Whether `a` may share a point with the triangle `t` (given in `a`'s model frame), for
     /// volumes with a direct test; `None` makes the caller test against the triangle's own volume.

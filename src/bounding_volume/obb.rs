@@ -14,6 +14,19 @@ pub struct Obb {
     pub half: Vec3,
 }
 
+/// A box posed in another model's frame (see [`OverlapVolume::pose`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PosedObb {
+    /// The axes (columns) in the other frame.
+    axes: Mat3,
+    /// The centre in the other frame.
+    center: Vec3,
+    /// Half extents along the axes.
+    half: Vec3,
+    /// The magnitudes its coordinates were computed from, for the rounding allowance.
+    magnitude: f64,
+}
+
 /// Rounding allowance of the separation test, relative to the magnitudes that enter it. It also
 /// keeps near-parallel edge pairs, whose cross-product axis is nearly zero and all of whose terms are
 /// rounding noise, from ever separating overlapping boxes.
@@ -126,23 +139,36 @@ impl BoundingVolume for Obb {
 }
 
 impl OverlapVolume for Obb {
+    type Posed = PosedObb;
+
+    #[inline]
+    fn pose(b: &Self, rel: &RelPose) -> PosedObb {
+        PosedObb {
+            axes: rel.rot * b.axes,
+            center: rel.apply(&b.center),
+            half: b.half,
+            magnitude: abs_sum(&b.center) + abs_sum(&rel.trans) + b.half.sum(),
+        }
+    }
+
     /// Separating axis test on the 15 candidate axes: the 3 face normals of each box and the 9 cross
     /// products of an edge of each. Every test allows a rounding slack, so touching boxes overlap.
     #[inline]
-    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
+    fn overlap_posed(a: &Self, b: &PosedObb, _rel: &RelPose) -> bool {
         let (ha, hb) = (&a.half, &b.half);
-        // Work in a's box frame: b's axes are the columns of R = A^T rot B, its centre is t.
-        let m = a.axes.tr_mul(&rel.rot);
-        let t = m * b.center + a.axes.tr_mul(&(rel.trans - a.center));
-        let slack = OVERLAP_SLACK
-            * (abs_sum(&a.center) + abs_sum(&b.center) + abs_sum(&rel.trans) + ha.sum() + hb.sum())
-            + UNDERFLOW_SLACK;
+        // Work in a's box frame: b's axes are the columns of R = A^T B', its centre is t (B' and
+        // the centre posed in a's model frame once, for all the boxes b is tested against).
+        let d = b.center - a.center;
+        let slack = OVERLAP_SLACK * (abs_sum(&a.center) + ha.sum() + b.magnitude) + UNDERFLOW_SLACK;
 
         // a's face normals, one row of R at a time: most separated pairs go at the first.
+        let mut t = Vec3::zeros();
         let mut r = Mat3::zeros();
         let mut ar = Mat3::zeros();
         for i in 0..3 {
-            let row = m.row(i) * b.axes;
+            let axis = a.axes.column(i);
+            t[i] = axis.dot(&d);
+            let row = axis.transpose() * b.axes;
             let arow = row.abs();
             if t[i].abs() > ha[i] + arow.dot(&hb.transpose()) + slack {
                 return false;
@@ -202,14 +228,24 @@ impl OverlapVolume for Obb {
         if apart(&e[0].cross(&e[1])) {
             return Some(false);
         }
+        // `apart` for an axis with components `x` at index `j` and `y` at index `k > j`, 0 at the
+        // third: the products with the 0 left out (a float product with 0 is not folded away by
+        // the compiler), which changes no value.
+        let apart2 = |j: usize, x: f64, k: usize, y: f64| {
+            let p = |w: &Vec3| w[j] * x + w[k] * y;
+            let (p0, p1, p2) = (p(&v[0]), p(&v[1]), p(&v[2]));
+            let lo = p0.min(p1).min(p2);
+            let hi = p0.max(p1).max(p2);
+            let r = h[j] * x.abs() + h[k] * y.abs();
+            let s = slack * (x.abs() + y.abs());
+            lo > r + s || hi < -r - s
+        };
         for edge in &e {
-            // e_i x edge for the box axes e_i, written out.
-            let axes = [
-                Vec3::new(0.0, -edge.z, edge.y),
-                Vec3::new(edge.z, 0.0, -edge.x),
-                Vec3::new(-edge.y, edge.x, 0.0),
-            ];
-            if axes.iter().any(apart) {
+            // e_i x edge for the box axes e_i: (0, -z, y), (z, 0, -x), (-y, x, 0).
+            if apart2(1, -edge.z, 2, edge.y)
+                || apart2(0, edge.z, 2, -edge.x)
+                || apart2(0, -edge.y, 1, edge.x)
+            {
                 return Some(false);
             }
         }

@@ -475,12 +475,20 @@ fn axis_across(x: &Vec3) -> Vec3 {
 }
 
 impl OverlapVolume for Ssv {
+    type Posed = Ssv;
+
+    /// The volume itself: the test composes the poses as it goes.
+    #[inline]
+    fn pose(b: &Self, _rel: &RelPose) -> Ssv {
+        *b
+    }
+
     /// Swept sphere volumes may meet exactly when their cores are within both radii (and the
     /// rounding slack of the distance bound): never false when they share a point. Pairs whose
     /// enclosing balls are apart are rejected first, and the core distance stops at the first pair
     /// of points close enough.
     #[inline]
-    fn overlap(a: &Self, b: &Self, rel: &RelPose) -> bool {
+    fn overlap_posed(a: &Self, b: &Self, rel: &RelPose) -> bool {
         let (ca, ra) = a.ball();
         let (cb, rb) = b.ball();
         let slack = Ssv::slack(a, b, rel);

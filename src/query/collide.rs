@@ -1,6 +1,6 @@
 //! Collision: which triangle pairs of two posed models overlap.
 
-use super::traversal::{LeafCache, NodePair, PairStack, descend_first};
+use super::traversal::{NodePair, PairStack};
 use super::{Stats, prepare};
 use crate::bounding_volume::OverlapVolume;
 use crate::bvh::{Bvh, NodeRef};
@@ -8,6 +8,7 @@ use crate::error::Error;
 use crate::geometry::{Tri, tri_overlap};
 use crate::math::{Pose, RelPose};
 use crate::model::{CollisionVolume, Model};
+use std::mem::MaybeUninit;
 use std::time::Instant;
 
 /// Report every overlapping pair, or stop at the first (PQP's `PQP_ALL_CONTACTS` = 1 and
@@ -106,10 +107,8 @@ pub fn collide_into(
     result.pairs.clear();
     // Two triangles: test them at once (their volumes, computed from them, would cost about as
     // much as the test).
-    let leaf_pair = |ta: usize, tb: usize| {
-        let t2 = b2.tri(tb);
-        let moved: Tri = [rel.apply(&t2[0]), rel.apply(&t2[1]), rel.apply(&t2[2])];
-        tri_overlap(&b1.tri(ta), &moved).then(|| ContactPair {
+    let leaf_pair = |ta: usize, tb: usize, moved: &Tri| {
+        tri_overlap(&b1.tri(ta), moved).then(|| ContactPair {
             id1: b1.ids[ta],
             id2: b2.ids[tb],
         })
@@ -122,6 +121,8 @@ pub fn collide_into(
 
 /// The search of [`collide_into`] (and of the self-collision query) on the models' collision
 /// volume (the swept sphere volumes if both models ask for them, else the boxes): see [`search`].
+/// `leaf_pair` gets the triangles' leaf slots and model 2's triangle posed by `rel` in model 1's
+/// frame (unposed when `same`).
 pub(super) fn search_pairs(
     pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
@@ -129,7 +130,7 @@ pub(super) fn search_pairs(
     rel: &RelPose,
     mode: ContactMode,
     same: bool,
-    leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
+    leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
 ) -> Stats {
     if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv {
         search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.ssv(r))
@@ -151,12 +152,16 @@ fn search<V: OverlapVolume>(
     rel: &RelPose,
     mode: ContactMode,
     same: bool,
-    mut leaf_pair: impl FnMut(usize, usize) -> Option<ContactPair>,
+    mut leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
-    let (mut leaf1, mut leaf2) = (LeafCache::default(), LeafCache::default());
+    let (mut nodes1, mut posed2) = (NodeCache::new(), NodeCache::new());
+    // Model 1's triangles posed in model 2's frame, and model 2's in model 1's.
+    let (mut tris1, mut tris2) = (NodeCache::<Tri>::new(), NodeCache::<Tri>::new());
+    let to_1 = |t: Tri| t.map(|p| rel.apply(&p));
+    let to_2 = |t: Tri| t.map(|p| rel.apply_inverse(&p));
     stack.push(NodePair {
         a: b1.root(),
         b: b2.root(),
@@ -174,7 +179,13 @@ fn search<V: OverlapVolume>(
         }
         if p.a.is_leaf() && p.b.is_leaf() {
             stats.tri_tests += 1;
-            if let Some(pair) = leaf_pair(p.a.triangle(), p.b.triangle()) {
+            let tb = p.b.triangle();
+            let moved = if same {
+                b2.tri(tb)
+            } else {
+                *tris2.get(p.b, || to_1(b2.tri(tb)))
+            };
+            if let Some(pair) = leaf_pair(p.a.triangle(), tb, &moved) {
                 pairs.push(pair);
                 if mode == ContactMode::First {
                     break;
@@ -209,17 +220,15 @@ fn search<V: OverlapVolume>(
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
         if p.a.is_leaf() || p.b.is_leaf() {
             let direct = if p.b.is_leaf() {
-                let t = b2.tri(p.b.triangle());
-                let moved: Tri = [rel.apply(&t[0]), rel.apply(&t[1]), rel.apply(&t[2])];
-                V::overlap_triangle(&volume(b1, p.a), &moved)
+                let moved = tris2.get(p.b, || to_1(b2.tri(p.b.triangle())));
+                let (va, _) = nodes1.get(p.a, || {
+                    let v = volume(b1, p.a);
+                    (v, v.size())
+                });
+                V::overlap_triangle(va, moved)
             } else {
-                let t = b1.tri(p.a.triangle());
-                let moved: Tri = [
-                    rel.apply_inverse(&t[0]),
-                    rel.apply_inverse(&t[1]),
-                    rel.apply_inverse(&t[2]),
-                ];
-                V::overlap_triangle(&volume(b2, p.b), &moved)
+                let moved = tris1.get(p.a, || to_2(b1.tri(p.a.triangle())));
+                V::overlap_triangle(&volume(b2, p.b), moved)
             };
             if let Some(hit) = direct {
                 stats.bv_tests += 1;
@@ -238,15 +247,20 @@ fn search<V: OverlapVolume>(
                 continue;
             }
         }
-        let (va, vb) = (
-            leaf1.get(p.a, |r| volume(b1, r)),
-            leaf2.get(p.b, |r| volume(b2, r)),
-        );
+        let (va, size_a) = nodes1.get(p.a, || {
+            let v = volume(b1, p.a);
+            (v, v.size())
+        });
+        let (vb, size_b) = posed2.get(p.b, || {
+            let v = volume(b2, p.b);
+            (V::pose(&v, rel), v.size())
+        });
         stats.bv_tests += 1;
-        if !V::overlap(&va, &vb, rel) {
+        if !V::overlap_posed(va, vb, rel) {
             continue;
         }
-        if descend_first(p.a, p.b, &va, &vb) {
+        // Descend the larger volume, or whichever is not a leaf (as `descend_first`).
+        if p.b.is_leaf() || (!p.a.is_leaf() && *size_a >= *size_b) {
             let [c0, c1] = b1.children(p.a);
             stack.push(NodePair { a: c1, ..p });
             stack.push(NodePair { a: c0, ..p });
@@ -257,4 +271,40 @@ fn search<V: OverlapVolume>(
         }
     }
     stats
+}
+
+/// Slots of a [`NodeCache`].
+const NODE_SLOTS: usize = 64;
+
+/// Values computed for the nodes of one hierarchy met recently (inner nodes and leaves), in a
+/// small direct-mapped table: the depth-first search tests one node against a run of the other
+/// model's nodes while it descends the other model, so a node's volume (posed, for model 2) and
+/// size are computed once for the run rather than at every test. Lives in the query, on the
+/// stack; only its keys are initialised.
+struct NodeCache<T> {
+    /// The raw value of the node whose value each slot holds; `i32::MIN` (no node's: a model has
+    /// fewer than `i32::MAX` triangles): none.
+    keys: [i32; NODE_SLOTS],
+    values: [MaybeUninit<T>; NODE_SLOTS],
+}
+
+impl<T: Copy> NodeCache<T> {
+    fn new() -> Self {
+        NodeCache {
+            keys: [i32::MIN; NODE_SLOTS],
+            values: [const { MaybeUninit::uninit() }; NODE_SLOTS],
+        }
+    }
+
+    /// Node `r`'s value, computed by `make` when its slot holds another node's.
+    #[inline(always)]
+    fn get(&mut self, r: NodeRef, make: impl FnOnce() -> T) -> &T {
+        let i = (r.raw() as u32 as usize) % NODE_SLOTS;
+        if self.keys[i] != r.raw() {
+            self.values[i] = MaybeUninit::new(make());
+            self.keys[i] = r.raw();
+        }
+        // SAFETY: a slot's key is set only together with its value (just above, or before).
+        unsafe { self.values[i].assume_init_ref() }
+    }
 }

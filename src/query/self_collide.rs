@@ -50,7 +50,7 @@ pub fn self_collide_into(
     let b = m.bvh()?;
     let pairs = result.pairs_mut();
     pairs.clear();
-    let leaf_pair = |s: usize, t: usize| {
+    let leaf_pair = |s: usize, t: usize, _: &Tri| {
         self_contact(&b.tri(s), &b.tri(t)).then(|| {
             let (first, second) = if b.added[s] < b.added[t] {
                 (s, t)
