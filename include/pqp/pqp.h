@@ -1688,12 +1688,13 @@ int pqp_ray_cast(struct pqp_ray_hit *hit,
  * @param directions  3 n doubles: the directions, as for pqp_ray_cast.
  * @param max_t       the farthest t of interest for every ray, as for pqp_ray_cast.
  * @param threads     the threads to cast on, the calling one included; 0 for as many as the
- *                    machine has. Fewer are used for few rays (one per 64 rays at most), and at
- *                    most 256.
+ *                    machine has (counted once per process); any value is valid and is capped
+ *                    to the available cores and to n.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if R, T or m is NULL, or hits, origins or directions is
  *         NULL and n > 0; PQP_ERR_INVALID_ARGUMENT if n is too large for the address space (n *
  *         sizeof(pqp_ray_hit) > PTRDIFF_MAX), or as pqp_ray_cast for max_t or any ray; the other
- *         codes as pqp_ray_cast, for any ray; PQP_ERR_INTERNAL on an internal fault (every hit
+ *         codes as pqp_ray_cast, for any ray; PQP_ERR_OUT_OF_MEMORY if the answers' working
+ *         storage could not be allocated; PQP_ERR_INTERNAL on an internal fault (every hit
  *         is then reset to "no hit" if the casting had begun). On any other error nothing is
  *         written.
  * Thread safety: as pqp_ray_cast.

@@ -197,7 +197,7 @@ const MAX_QUERIES: usize = isize::MAX as usize / (9 * size_of::<f64>());
 
 /// The workers of a batch from C: `threads` as asked, and each started thread marked as inside a C
 /// call (see [`quietly`]).
-fn workers(threads: c_uint) -> Workers {
+pub(super) fn workers(threads: c_uint) -> Workers {
     Workers {
         threads: usize::try_from(threads).unwrap_or(usize::MAX),
         enter: quietly,

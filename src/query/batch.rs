@@ -107,7 +107,7 @@ pub(crate) struct Workers {
 
 impl Workers {
     /// Threads that just run their work (the Rust API).
-    fn plain(threads: usize) -> Workers {
+    pub(crate) fn plain(threads: usize) -> Workers {
         Workers {
             threads,
             enter: |work| work(),

@@ -25,6 +25,7 @@
 //! Among hits at the same `t`, the triangle added first wins, so the answer does not depend on the
 //! order of the search.
 
+use super::batch::{Workers, answer_all};
 use super::traversal::{NodePair, PairStack};
 use crate::bvh::{Bvh, NodeKind, NodeRef};
 use crate::error::{Error, MAX_COORDINATE};
@@ -32,7 +33,6 @@ use crate::geometry::Tri;
 use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
-use std::sync::Mutex;
 
 /// The nearest hit of a ray on a posed model.
 ///
@@ -519,59 +519,31 @@ pub fn ray_cast_batch(
     for (o, d) in origins.iter().zip(directions) {
         RayCaster::check(o, d)?;
     }
-    let mut out = Vec::new();
-    out.try_reserve_exact(origins.len())
-        .map_err(|_| Error::OutOfMemory)?;
-    out.resize(origins.len(), None);
-    caster.cast_all(&|i| (origins[i], directions[i]), threads, &mut out, &|h| h);
-    Ok(out)
+    caster.cast_all(
+        |i| (origins[i], directions[i]),
+        origins.len(),
+        Workers::plain(threads),
+    )
 }
 
-/// Rays per work item of a batch: enough to make taking one cheap beside casting them.
-const BATCH_CHUNK: usize = 64;
-
-/// Most threads a batch starts (a thread count beyond any machine is a caller's mistake, not a
-/// request for thousands of threads).
-const MAX_THREADS: usize = 256;
-
 impl RayCaster<'_> {
-    /// Casts ray `i` (`ray(i)`, already checked) for every slot `i` of `out` and stores
-    /// `put(answer)` there, on `threads` threads (0: the machine's), the calling thread included.
-    /// The rays go in chunks to whichever thread is free; a thread that cannot be started leaves
-    /// its share to the others.
-    pub(crate) fn cast_all<O: Send>(
+    /// Casts rays `0..n` (`ray(i)`, already checked) on the threads `workers` gives, with the
+    /// pair batches' dispatcher ([`answer_all`]): the answers in ray order.
+    pub(crate) fn cast_all(
         &self,
-        ray: &(dyn Fn(usize) -> (Vec3, Vec3) + Sync),
-        threads: usize,
-        out: &mut [O],
-        put: &(dyn Fn(Option<RayHit>) -> O + Sync),
-    ) {
-        let threads = match threads {
-            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-            n => n,
-        }
-        .min(out.len().div_ceil(BATCH_CHUNK))
-        .min(MAX_THREADS);
-        let work = Mutex::new(out.chunks_mut(BATCH_CHUNK).enumerate());
-        let run = || {
-            loop {
-                // A poisoned lock means another worker panicked: the scope will report it.
-                let Some((c, chunk)) = work.lock().ok().and_then(|mut w| w.next()) else {
-                    return;
-                };
-                for (j, slot) in chunk.iter_mut().enumerate() {
-                    let (o, d) = ray(c * BATCH_CHUNK + j);
-                    *slot = put(self.cast(&o, &d));
-                }
-            }
-        };
-        std::thread::scope(|s| {
-            for _ in 1..threads {
-                // A thread that cannot be started: the others do its share.
-                let _ = std::thread::Builder::new().spawn_scoped(s, run);
-            }
-            run();
-        });
+        ray: impl Fn(usize) -> (Vec3, Vec3) + Sync,
+        n: usize,
+        workers: Workers,
+    ) -> Result<Vec<Option<RayHit>>, Error> {
+        answer_all(
+            n,
+            workers,
+            || (),
+            |_, i| {
+                let (o, d) = ray(i);
+                Ok(self.cast(&o, &d))
+            },
+        )
     }
 }
 
