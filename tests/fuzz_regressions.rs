@@ -42,6 +42,11 @@ fn query_inputs() {
 }
 
 #[test]
+fn more_query_inputs() {
+    assert!(replay("more_queries", fuzz_checks::more_queries) >= 10);
+}
+
+#[test]
 fn convex_inputs() {
     assert!(replay("convex", fuzz_checks::convex) >= 10);
 }

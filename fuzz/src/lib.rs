@@ -18,6 +18,11 @@
 //!   recomputed so that the structural checks are reached), into a fresh and into a built model:
 //!   refused with `PQP_ERR_INVALID_DATA` and the model unchanged, or loaded as a model that saves
 //!   to exactly those bytes and that every query and view runs on.
+//! - [`more_queries`]: what PQP 1.3 lacks, on two small models whose triangles share vertices:
+//!   closest point and signed distance (against a brute-force minimum and winding number), rays
+//!   and their batch form (against crossings well inside a triangle), pairs within a distance,
+//!   self-collision (against collide of the model with itself), refit (against a rebuilt model)
+//!   and time of contact (against the distance sampled along the same motion).
 //!
 //! A broken promise is a panic with a message saying which; `PQP_ERR_INTERNAL` (a caught panic
 //! inside the library) counts as one.
@@ -1367,5 +1372,758 @@ pub fn deserialize(data: &[u8]) {
         }
         pqp_model_destroy(fresh);
         pqp_model_destroy(other);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The queries PQP never had: points, rays, pairs within a distance, self-collision, refit and
+// time of contact.
+
+fn sub3(a: &[f64], b: &[f64]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `v` over its largest magnitude (no overflow or underflow at any scale), or None for zero.
+fn rescaled(v: [f64; 3]) -> Option<[f64; 3]> {
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    (m > 0.0).then(|| [v[0] / m, v[1] / m, v[2] / m])
+}
+
+fn unit3(v: [f64; 3]) -> Option<[f64; 3]> {
+    let v = rescaled(v)?;
+    let n = dot3(&v, &v).sqrt();
+    Some([v[0] / n, v[1] / n, v[2] / n])
+}
+
+/// Distance from a point to a triangle, by the exact triangle distance with the point as a
+/// degenerate triangle.
+fn point_tri_distance(p: &[f64; 3], t: &Tri) -> f64 {
+    tri_distance(&[p[0], p[1], p[2], p[0], p[1], p[2], p[0], p[1], p[2]], t)
+}
+
+/// The generalized winding number of `tris` about `p`: the solid angles (Van Oosterom and
+/// Strackee's formula on unit vectors, so any scale works) summed plainly over 4 pi; None when
+/// `p` is a vertex.
+fn brute_winding(tris: &[Tri], p: &[f64; 3]) -> Option<f64> {
+    let mut sum = 0.0;
+    for t in tris {
+        let a = unit3(sub3(&t[0..3], p))?;
+        let b = unit3(sub3(&t[3..6], p))?;
+        let c = unit3(sub3(&t[6..9], p))?;
+        let det = dot3(&a, &cross3(&b, &c));
+        let den = 1.0 + dot3(&a, &b) + dot3(&b, &c) + dot3(&c, &a);
+        sum += 2.0 * det.atan2(den);
+    }
+    Some(sum / (4.0 * std::f64::consts::PI))
+}
+
+/// The ray parameter where `o + t d` crosses triangle `t` well inside it (every barycentric
+/// coordinate above 1e-6, the ray at more than about 1e-3 radians to its plane), by Moller and Trumbore's
+/// plain formula; None for a crossing near an edge, a grazing ray or no crossing.
+fn robust_crossing(o: &[f64; 3], d: &[f64; 3], t: &Tri) -> Option<f64> {
+    // Everything is rescaled by the triangle's extent so that no product overflows.
+    let e1 = sub3(&t[3..6], &t[0..3]);
+    let e2 = sub3(&t[6..9], &t[0..3]);
+    let s = e1.iter().chain(&e2).fold(0.0f64, |m, x| m.max(x.abs()));
+    if s == 0.0 {
+        return None;
+    }
+    let (e1, e2) = (
+        [e1[0] / s, e1[1] / s, e1[2] / s],
+        [e2[0] / s, e2[1] / s, e2[2] / s],
+    );
+    let du = unit3(*d)?;
+    let w = sub3(o, &t[0..3]);
+    let w = [w[0] / s, w[1] / s, w[2] / s];
+    let p = cross3(&du, &e2);
+    let det = dot3(&e1, &p);
+    let area = dot3(&cross3(&e1, &e2), &cross3(&e1, &e2)).sqrt();
+    if det.abs() <= 1e-3 * area || det.is_nan() || !w.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let u = dot3(&w, &p) / det;
+    let q = cross3(&w, &e1);
+    let v = dot3(&du, &q) / det;
+    let along = dot3(&e2, &q) / det; // distance along the unit direction, over s
+    if u > 1e-6 && v > 1e-6 && 1.0 - u - v > 1e-6 && along.is_finite() {
+        let dn = dot3(d, d).sqrt();
+        Some(along * s / dn)
+    } else {
+        None
+    }
+}
+
+/// A rotation matrix's unit quaternion (w, x, y, z), by the largest of its four candidates.
+fn quaternion(r: &[f64; 9]) -> [f64; 4] {
+    let tr = r[0] + r[4] + r[8];
+    let q = if tr > r[0].max(r[4]).max(r[8]) {
+        let s = (1.0 + tr).sqrt() * 2.0;
+        [
+            s / 4.0,
+            (r[7] - r[5]) / s,
+            (r[2] - r[6]) / s,
+            (r[3] - r[1]) / s,
+        ]
+    } else if r[0] >= r[4] && r[0] >= r[8] {
+        let s = (1.0 + r[0] - r[4] - r[8]).sqrt() * 2.0;
+        [
+            (r[7] - r[5]) / s,
+            s / 4.0,
+            (r[1] + r[3]) / s,
+            (r[2] + r[6]) / s,
+        ]
+    } else if r[4] >= r[8] {
+        let s = (1.0 + r[4] - r[0] - r[8]).sqrt() * 2.0;
+        [
+            (r[2] - r[6]) / s,
+            (r[1] + r[3]) / s,
+            s / 4.0,
+            (r[5] + r[7]) / s,
+        ]
+    } else {
+        let s = (1.0 + r[8] - r[0] - r[4]).sqrt() * 2.0;
+        [
+            (r[3] - r[1]) / s,
+            (r[2] + r[6]) / s,
+            (r[5] + r[7]) / s,
+            s / 4.0,
+        ]
+    };
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    [q[0] / n, q[1] / n, q[2] / n, q[3] / n]
+}
+
+fn qmul(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+fn rotation_of(q: &[f64; 4]) -> [f64; 9] {
+    let [w, x, y, z] = *q;
+    [
+        1.0 - 2.0 * (y * y + z * z),
+        2.0 * (x * y - z * w),
+        2.0 * (x * z + y * w),
+        2.0 * (x * y + z * w),
+        1.0 - 2.0 * (x * x + z * z),
+        2.0 * (y * z - x * w),
+        2.0 * (x * z - y * w),
+        2.0 * (y * z + x * w),
+        1.0 - 2.0 * (x * x + y * y),
+    ]
+}
+
+/// The header's motion, independently: R(t) = Ra exp(t log(Ra^T Rb)) the shorter way (a
+/// quaternion slerp from the identity to Ra^T Rb), T(t) linear. None for a relative turn within
+/// 1e-6 of pi, which the header lets go either way.
+struct Motion {
+    qa: [f64; 4],
+    axis: [f64; 3],
+    angle: f64,
+    ta: [f64; 3],
+    tb: [f64; 3],
+}
+
+impl Motion {
+    fn new(ra: &[f64; 9], ta: [f64; 3], rb: &[f64; 9], tb: [f64; 3]) -> Option<Motion> {
+        let qa = quaternion(ra);
+        let qb = quaternion(rb);
+        let mut rel = qmul(&[qa[0], -qa[1], -qa[2], -qa[3]], &qb);
+        if rel[0] < 0.0 {
+            rel = rel.map(|x| -x);
+        }
+        if rel[0] < 1e-6 {
+            return None;
+        }
+        let s = (rel[1] * rel[1] + rel[2] * rel[2] + rel[3] * rel[3]).sqrt();
+        let angle = 2.0 * s.atan2(rel[0]);
+        let axis = if s > 0.0 {
+            [rel[1] / s, rel[2] / s, rel[3] / s]
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        Some(Motion {
+            qa,
+            axis,
+            angle,
+            ta,
+            tb,
+        })
+    }
+
+    fn at(&self, t: f64) -> ([f64; 9], [f64; 3]) {
+        let h = 0.5 * self.angle * t;
+        let step = [
+            h.cos(),
+            self.axis[0] * h.sin(),
+            self.axis[1] * h.sin(),
+            self.axis[2] * h.sin(),
+        ];
+        let r = rotation_of(&qmul(&self.qa, &step));
+        let tr = [0, 1, 2].map(|i| self.ta[i] + t * (self.tb[i] - self.ta[i]));
+        (r, tr)
+    }
+}
+
+/// The exact distance of two posed models (fresh result each time).
+unsafe fn model_distance(
+    p1: &([f64; 9], [f64; 3]),
+    m1: *const pqp_model,
+    p2: &([f64; 9], [f64; 3]),
+    m2: *const pqp_model,
+) -> f64 {
+    let d = pqp_distance_result_create();
+    let rc = pqp_distance(
+        d,
+        p1.0.as_ptr(),
+        p1.1.as_ptr(),
+        m1,
+        p2.0.as_ptr(),
+        p2.1.as_ptr(),
+        m2,
+        0.0,
+        0.0,
+        2,
+    );
+    assert_code("distance", rc, &[PQP_OK]);
+    let v = pqp_distance_result_distance(d);
+    pqp_distance_result_destroy(d);
+    v
+}
+
+/// The pairs of a collision result, as indices from the given first ids.
+unsafe fn pairs_of(c: *const pqp_collide_result, id1: c_int, id2: c_int) -> Vec<(usize, usize)> {
+    let n = pqp_collide_result_num_pairs(c);
+    (0..n)
+        .map(|k| {
+            (
+                (pqp_collide_result_id1(c, k) - id1) as usize,
+                (pqp_collide_result_id2(c, k) - id2) as usize,
+            )
+        })
+        .collect()
+}
+
+/// Every query PQP 1.3 lacks, on small models at random poses, against brute force (see the
+/// crate documentation).
+pub fn more_queries(data: &[u8]) {
+    let mut input = Bytes::new(data);
+    let n1 = 1 + (input.u8() % 6) as usize;
+    let n2 = 1 + (input.u8() % 6) as usize;
+    // Vertices from a small pool, so that triangles share vertices and edges (self-collision's
+    // exclusion) and closed fans occur. The pool has one scale (mostly 1, as `coord` scales), so
+    // that most inputs stay on the predicates' fast path; vertices outside it mix scales.
+    let pool_scale = [1.0, 1.0, 1.0, 1.0, 1.0, 1e-140, 1e140, 1e-6][(input.u8() % 8) as usize];
+    let pool: Vec<[f64; 3]> = (0..6)
+        .map(|_| [input.grid(), input.grid(), input.grid()].map(|x| x * pool_scale))
+        .collect();
+    let tri = |input: &mut Bytes| -> Tri {
+        let mut t = [0.0; 9];
+        for k in 0..3 {
+            let sel = input.u8();
+            let v = if sel < 192 {
+                pool[(sel % 6) as usize]
+            } else {
+                [input.coord(), input.coord(), input.coord()]
+            };
+            t[3 * k..3 * k + 3].copy_from_slice(&v);
+        }
+        t
+    };
+    let a: Vec<Tri> = (0..n1).map(|_| tri(&mut input)).collect();
+    let b: Vec<Tri> = (0..n2).map(|_| tri(&mut input)).collect();
+    let (va, ca) = ((input.u8() % 4) as c_int, (input.u8() % 2) as c_int);
+    let (vb, cb) = ((input.u8() % 4) as c_int, (input.u8() % 2) as c_int);
+    let r1 = input.rotation();
+    let t1 = [input.grid(), input.grid(), input.grid()];
+    let r2 = input.rotation();
+    let t2 = [input.grid(), input.grid(), input.grid()];
+    const ID1: c_int = 7;
+    const ID2: c_int = -3;
+
+    let wa: Vec<Tri> = a.iter().map(|t| world(&r1, &t1, t)).collect();
+    let wb: Vec<Tri> = b.iter().map(|t| world(&r2, &t2, t)).collect();
+    let scale = wa
+        .iter()
+        .chain(&wb)
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let eps = 1e-9 * scale.max(1e-300);
+    let pair_d: Vec<Vec<f64>> = wa
+        .iter()
+        .map(|s| wb.iter().map(|t| tri_distance(s, t)).collect())
+        .collect();
+
+    unsafe {
+        let m1 = build(&a, ID1, va, ca);
+        let m2 = build(&b, ID2, vb, cb);
+        let (r1p, t1p, r2p, t2p) = (r1.as_ptr(), t1.as_ptr(), r2.as_ptr(), t2.as_ptr());
+
+        // Closest point and signed distance of a point near the scene.
+        let p = [
+            input.coord() + t1[0],
+            input.coord() + t1[1],
+            input.coord() + t1[2],
+        ];
+        let brute = wa
+            .iter()
+            .map(|t| point_tri_distance(&p, t))
+            .fold(f64::INFINITY, f64::min);
+        let eps_p = eps.max(1e-9 * p.iter().fold(0.0f64, |m, x| m.max(x.abs())));
+        let max_d = match input.u8() % 4 {
+            0 => f64::INFINITY,
+            1 => brute,
+            _ => input.grid().abs(),
+        };
+        let mut out = pqp_point_result {
+            distance: -1.0,
+            point: [0.0; 3],
+            triangle: -2,
+        };
+        let rc = pqp_closest_point(&mut out, r1p, t1p, m1, p.as_ptr(), max_d);
+        assert_code("closest_point", rc, &[PQP_OK]);
+        if out.triangle == -1 {
+            assert!(out.distance == f64::INFINITY && out.point.iter().all(|x| x.is_nan()));
+            assert!(
+                brute > max_d - eps_p,
+                "closest point: nothing within {max_d}, brute force {brute}"
+            );
+        } else {
+            let i = (out.triangle - ID1) as usize;
+            assert!(
+                i < n1,
+                "closest point: triangle id {} out of range",
+                out.triangle
+            );
+            assert!(
+                (out.distance - brute).abs() <= eps_p,
+                "closest point: {} vs brute force {brute}",
+                out.distance
+            );
+            assert!(out.distance <= max_d, "closest point beyond max_distance");
+            assert!(
+                (dist3(&out.point, &p) - out.distance).abs() <= eps_p,
+                "closest point: point not that far"
+            );
+            assert!(
+                point_tri_distance(&out.point, &wa[i]) <= eps_p,
+                "closest point: not on its triangle"
+            );
+        }
+        let mut sd = f64::NAN;
+        let rc = pqp_signed_distance(&mut sd, r1p, t1p, m1, p.as_ptr());
+        assert_code("signed_distance", rc, &[PQP_OK]);
+        assert!(
+            (sd.abs() - brute).abs() <= eps_p,
+            "signed distance {sd} vs brute force {brute}"
+        );
+        if let (true, Some(w)) = (brute > eps_p, brute_winding(&wa, &p)) {
+            if w.abs() >= 0.5 + 1e-4 {
+                assert!(
+                    sd < 0.0,
+                    "winding number {w}: inside, but signed distance {sd}"
+                );
+            } else if w.abs() <= 0.5 - 1e-4 {
+                assert!(
+                    sd > 0.0,
+                    "winding number {w}: outside, but signed distance {sd}"
+                );
+            }
+        }
+
+        // Rays: the nearest hit against the triangles crossed well inside, and the batch form.
+        let mut origins = [0.0; 9];
+        let mut dirs = [0.0; 9];
+        for k in 0..3 {
+            for j in 0..3 {
+                origins[3 * k + j] = input.coord() + t1[j];
+                dirs[3 * k + j] = input.grid();
+            }
+            if dirs[3 * k..3 * k + 3].iter().all(|&x| x == 0.0) {
+                dirs[3 * k + 2] = 1.0;
+            }
+        }
+        let max_t = match input.u8() % 4 {
+            0 => f64::INFINITY,
+            1 => 0.0,
+            _ => input.grid().abs() * 4.0,
+        };
+        let no_hit = pqp_ray_hit {
+            t: -1.0,
+            point: [0.0; 3],
+            normal: [0.0; 3],
+            triangle: -2,
+        };
+        let mut singles = [no_hit; 3];
+        for k in 0..3 {
+            let (o, d) = (&origins[3 * k..3 * k + 3], &dirs[3 * k..3 * k + 3]);
+            let rc = pqp_ray_cast(&mut singles[k], r1p, t1p, m1, o.as_ptr(), d.as_ptr(), max_t);
+            assert_code("ray_cast", rc, &[PQP_OK]);
+            let h = singles[k];
+            let (o, d) = ([o[0], o[1], o[2]], [d[0], d[1], d[2]]);
+            let dn = dot3(&d, &d).sqrt();
+            let nearest = wa
+                .iter()
+                .filter_map(|t| robust_crossing(&o, &d, t))
+                .filter(|&t| t >= 0.0 && t <= max_t)
+                .fold(f64::INFINITY, f64::min);
+            // Rounding, and the crossings' error along the ray (up to 1e3 times that at the
+            // angles robust_crossing keeps).
+            let reach = dot3(&o, &o).sqrt() + if h.t.is_finite() { h.t * dn } else { 0.0 };
+            let slack = 1e3 * eps.max(1e-9 * reach);
+            if h.triangle == -1 {
+                assert!(h.t == f64::INFINITY);
+                assert!(
+                    nearest == f64::INFINITY || nearest * dn > max_t * dn - slack,
+                    "ray {k}: no hit, but a triangle is crossed at t = {nearest}"
+                );
+            } else {
+                let i = (h.triangle - ID1) as usize;
+                assert!(i < n1, "ray {k}: triangle id out of range");
+                assert!(
+                    h.t >= 0.0 && h.t <= max_t,
+                    "ray {k}: t = {} outside [0, {max_t}]",
+                    h.t
+                );
+                assert!(
+                    h.t * dn <= nearest * dn + slack,
+                    "ray {k}: hit at {} after a crossing at {nearest}",
+                    h.t
+                );
+                let at = [0, 1, 2].map(|j| o[j] + h.t * d[j]);
+                assert!(
+                    dist3(&at, &h.point) <= slack,
+                    "ray {k}: point is not origin + t direction"
+                );
+                // Off the triangle by the error along the ray, which grows as the ray grazes it.
+                let sin = dot3(&h.normal, &unit3(d).unwrap()).abs();
+                if sin > 1e-3 {
+                    assert!(
+                        point_tri_distance(&h.point, &wa[i]) <= slack,
+                        "ray {k}: point off its triangle"
+                    );
+                }
+                let t = &wa[i];
+                if let Some(m) = unit3(cross3(&sub3(&t[3..6], &t[0..3]), &sub3(&t[6..9], &t[0..3])))
+                {
+                    assert!(
+                        dot3(&m, &h.normal) > 1.0 - 1e-6,
+                        "ray {k}: normal {:?} vs {m:?}",
+                        h.normal
+                    );
+                }
+            }
+        }
+        let mut batch = [no_hit; 3];
+        let threads = (input.u8() % 4) as u32;
+        let rc = pqp_ray_cast_batch(
+            batch.as_mut_ptr(),
+            3,
+            r1p,
+            t1p,
+            m1,
+            origins.as_ptr(),
+            dirs.as_ptr(),
+            max_t,
+            threads,
+        );
+        assert_code("ray_cast_batch", rc, &[PQP_OK]);
+        for k in 0..3 {
+            assert_eq!(batch[k].triangle, singles[k].triangle, "batch ray {k}");
+            assert_eq!(
+                batch[k].t.to_bits(),
+                singles[k].t.to_bits(),
+                "batch ray {k}"
+            );
+        }
+
+        // Pairs within a distance, against the brute force and (at 0) against collide.
+        let c = pqp_collide_result_create();
+        let rc = pqp_collide(c, r1p, t1p, m1, r2p, t2p, m2, PQP_ALL_CONTACTS);
+        assert_code("collide", rc, &[PQP_OK]);
+        let mut contacts = pairs_of(c, ID1, ID2);
+        contacts.sort();
+        let tol = match input.u8() % 4 {
+            0 => 0.0,
+            1 => f64::INFINITY,
+            _ => input.grid().abs() * scale.max(1e-300),
+        };
+        let rc = pqp_within_distance(c, r1p, t1p, m1, r2p, t2p, m2, tol);
+        assert_code("within_distance", rc, &[PQP_OK]);
+        let mut within = pairs_of(c, ID1, ID2);
+        let len = within.len();
+        within.sort();
+        within.dedup();
+        assert_eq!(within.len(), len, "within_distance: a pair listed twice");
+        if tol == 0.0 {
+            assert_eq!(within, contacts, "within_distance at 0 vs collide");
+        }
+        for (i, row) in pair_d.iter().enumerate() {
+            for (j, &d) in row.iter().enumerate() {
+                let listed = within.binary_search(&(i, j)).is_ok();
+                if d < tol - eps || tol == f64::INFINITY {
+                    assert!(
+                        listed,
+                        "within_distance: pair ({i}, {j}) at {d} <= {tol} missing"
+                    );
+                }
+                if d > tol + eps {
+                    assert!(
+                        !listed,
+                        "within_distance: pair ({i}, {j}) at {d} > {tol} listed"
+                    );
+                }
+            }
+        }
+
+        // Self-collision of model 1 against collide of model 1 with itself, for the pairs that
+        // share no vertex (exact both ways), and the brute force for every pair.
+        let rc = pqp_self_collide(c, m1, PQP_ALL_CONTACTS);
+        assert_code("self_collide", rc, &[PQP_OK]);
+        let selfs = pairs_of(c, ID1, ID1);
+        let mut sorted = selfs.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(
+            sorted.len(),
+            selfs.len(),
+            "self_collide: a pair reported twice"
+        );
+        let id = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        let zero = [0.0; 3];
+        let rc = pqp_collide(
+            c,
+            id.as_ptr(),
+            zero.as_ptr(),
+            m1,
+            id.as_ptr(),
+            zero.as_ptr(),
+            m1,
+            PQP_ALL_CONTACTS,
+        );
+        assert_code("collide with itself", rc, &[PQP_OK]);
+        let itself = pairs_of(c, ID1, ID1);
+        let vertex = |t: &Tri, k: usize| [t[3 * k], t[3 * k + 1], t[3 * k + 2]];
+        for i in 0..n1 {
+            for j in i + 1..n1 {
+                let reported = sorted.binary_search(&(i, j)).is_ok();
+                let shares = (0..3).any(|k| (0..3).any(|l| vertex(&a[i], k) == vertex(&a[j], l)));
+                if !shares {
+                    assert_eq!(
+                        reported,
+                        itself.contains(&(i, j)),
+                        "self_collide vs collide, pair ({i}, {j})"
+                    );
+                }
+                if reported {
+                    assert!(
+                        tri_distance(&a[i], &a[j]) == 0.0,
+                        "self_collide: ({i}, {j}) apart"
+                    );
+                }
+            }
+        }
+        assert!(
+            selfs.iter().all(|&(i, j)| i < j),
+            "self_collide: id1 not the earlier triangle"
+        );
+        let rc = pqp_self_collide(c, m1, PQP_FIRST_CONTACT);
+        assert_code("self_collide first", rc, &[PQP_OK]);
+        assert_eq!(
+            pqp_collide_result_num_pairs(c) > 0,
+            !selfs.is_empty(),
+            "self_collide first vs all"
+        );
+
+        // Refit model 1 to moved triangles: the same answers as a model built on them; a wrong
+        // count or a bad coordinate changes nothing.
+        let moved: Vec<Tri> = a
+            .iter()
+            .map(|t| {
+                let mut t = *t;
+                for x in t.iter_mut() {
+                    if input.u8() % 3 == 0 {
+                        *x += input.grid();
+                    }
+                }
+                t
+            })
+            .collect();
+        let flat: Vec<f64> = moved.iter().flatten().copied().collect();
+        let before = model_distance(&(r1, t1), m1, &(r2, t2), m2);
+        let rc = pqp_model_refit(m1, flat.as_ptr(), n1 + 1);
+        assert_code("refit (wrong count)", rc, &[PQP_ERR_INVALID_ARGUMENT]);
+        let mut bad = flat.clone();
+        let k = input.u8() as usize % bad.len();
+        bad[k] = f64::NAN;
+        let rc = pqp_model_refit(m1, bad.as_ptr(), n1);
+        assert_code("refit (NaN)", rc, &[PQP_ERR_NONFINITE_COORDINATE]);
+        assert_eq!(
+            model_distance(&(r1, t1), m1, &(r2, t2), m2).to_bits(),
+            before.to_bits(),
+            "failed refit changed the model"
+        );
+        let rc = pqp_model_refit(m1, flat.as_ptr(), n1);
+        assert_code("refit", rc, &[PQP_OK]);
+        let fresh = build(&moved, ID1, va, ca);
+        let moved_scale = moved
+            .iter()
+            .map(|t| world(&r1, &t1, t))
+            .chain(wb.iter().copied())
+            .flatten();
+        let meps = 1e-9 * moved_scale.fold(0.0f64, |m, x| m.max(x.abs())).max(1e-300);
+        let refit_d = model_distance(&(r1, t1), m1, &(r2, t2), m2);
+        let fresh_d = model_distance(&(r1, t1), fresh, &(r2, t2), m2);
+        assert!(
+            (refit_d - fresh_d).abs() <= meps,
+            "refit: distance {refit_d} vs rebuilt {fresh_d}"
+        );
+        let rc = pqp_collide(c, r1p, t1p, m1, r2p, t2p, m2, PQP_ALL_CONTACTS);
+        assert_code("collide after refit", rc, &[PQP_OK]);
+        let mut after = pairs_of(c, ID1, ID2);
+        let rc = pqp_collide(c, r1p, t1p, fresh, r2p, t2p, m2, PQP_ALL_CONTACTS);
+        assert_code("collide rebuilt", rc, &[PQP_OK]);
+        let mut rebuilt = pairs_of(c, ID1, ID2);
+        after.sort();
+        rebuilt.sort();
+        assert_eq!(after, rebuilt, "refit: pairs differ from a rebuilt model's");
+        pqp_model_destroy(fresh);
+        pqp_collide_result_destroy(c);
+
+        // Time of contact: model 1 (refit) and model 2 each move to a second pose.
+        let r1b = input.rotation();
+        let t1b = [input.grid(), input.grid(), input.grid()];
+        let r2b = input.rotation();
+        let t2b = [input.grid(), input.grid(), input.grid()];
+        let wm: Vec<Tri> = moved.iter().map(|t| world(&r1, &t1, t)).collect();
+        let span = wm
+            .iter()
+            .chain(&wb)
+            .flatten()
+            .chain(&t1b)
+            .chain(&t2b)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let span = span.max(
+            moved
+                .iter()
+                .chain(&b)
+                .flatten()
+                .fold(0.0f64, |m, x| m.max(x.abs())),
+        );
+        let ceps = 1e-8 * span.max(1e-300);
+        let tol = span.max(1e-300) * (1 + input.u8() % 64) as f64 / 64.0;
+        let blank = pqp_contact_time {
+            contact: 7,
+            toc: -1.0,
+            id1: 0,
+            id2: 0,
+            point1: [0.0; 3],
+            point2: [0.0; 3],
+        };
+        let mut ct = blank;
+        for bad_tol in [0.0, -tol, f64::NAN] {
+            let rc = pqp_time_of_contact(
+                &mut ct,
+                r1p,
+                t1p,
+                r1b.as_ptr(),
+                t1b.as_ptr(),
+                m1,
+                r2p,
+                t2p,
+                r2b.as_ptr(),
+                t2b.as_ptr(),
+                m2,
+                bad_tol,
+            );
+            assert_code(
+                "time_of_contact (bad tolerance)",
+                rc,
+                &[PQP_ERR_INVALID_ARGUMENT],
+            );
+            assert_eq!(ct.contact, 7, "time_of_contact wrote on an error");
+        }
+        let rc = pqp_time_of_contact(
+            &mut ct,
+            r1p,
+            t1p,
+            r1b.as_ptr(),
+            t1b.as_ptr(),
+            m1,
+            r2p,
+            t2p,
+            r2b.as_ptr(),
+            t2b.as_ptr(),
+            m2,
+            tol,
+        );
+        assert_code("time_of_contact", rc, &[PQP_OK]);
+        let motions = (
+            Motion::new(&r1, t1, &r1b, t1b),
+            Motion::new(&r2, t2, &r2b, t2b),
+        );
+        let d0 = model_distance(&(r1, t1), m1, &(r2, t2), m2);
+        if d0 < tol - ceps {
+            assert!(
+                ct.contact == 1 && ct.toc == 0.0,
+                "within tolerance at t = 0, toc {}",
+                ct.toc
+            );
+        }
+        if ct.contact == 1 {
+            assert!(
+                (0.0..=1.0).contains(&ct.toc),
+                "toc {} outside [0, 1]",
+                ct.toc
+            );
+            assert!(
+                dist3(&ct.point1, &ct.point2) <= tol + ceps,
+                "toc: closest points farther than tolerance"
+            );
+        } else {
+            assert!(ct.contact == 0 && ct.toc == f64::INFINITY && ct.id1 == -1 && ct.id2 == -1);
+        }
+        if let (Some(ma), Some(mb)) = motions {
+            let end = if ct.contact == 1 { ct.toc } else { 1.0 };
+            if ct.contact == 1 {
+                let d = model_distance(&ma.at(end), m1, &mb.at(end), m2);
+                assert!(
+                    d <= tol + ceps,
+                    "distance {d} at toc {end} above tolerance {tol}"
+                );
+            }
+            for k in 0..=16 {
+                let t = end * k as f64 / 16.0;
+                if ct.contact == 1 && t >= end {
+                    break;
+                }
+                let d = model_distance(&ma.at(t), m1, &mb.at(t), m2);
+                let floor = if ct.contact == 1 { 0.999 * tol } else { tol };
+                assert!(
+                    d > floor - ceps,
+                    "distance {d} at t = {t} before toc {} (tolerance {tol})",
+                    ct.toc
+                );
+            }
+        }
+
+        pqp_model_destroy(m1);
+        pqp_model_destroy(m2);
     }
 }
