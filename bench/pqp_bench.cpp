@@ -84,9 +84,12 @@ struct Options {
     bool want(const std::string& w) const { return only.empty() || only.count(w) != 0; }
 };
 
+// Exits without running static destructors: with FCL and Coal both linked, their static objects
+// were destroyed twice at exit ("double free detected" after an unknown option).
 [[noreturn]] void die(const std::string& msg) {
     std::fprintf(stderr, "pqp_bench: %s\n", msg.c_str());
-    std::exit(1);
+    std::fflush(stderr);
+    std::_Exit(1);
 }
 
 void check(int rc, const char* what) {
