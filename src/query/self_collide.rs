@@ -52,7 +52,7 @@ pub fn self_collide_into(
 ) -> Result<(), Error> {
     let start = Instant::now();
     let b = m.bvh()?;
-    let boxes = node_boxes(b)?;
+    let (boxes, kids) = node_boxes(b)?;
     let pairs = result.pairs_mut();
     pairs.clear();
     let mut stats = Stats::default();
@@ -66,7 +66,7 @@ pub fn self_collide_into(
         if p == q {
             // A node against itself: its children against themselves and each other.
             if !p.is_leaf() {
-                let [c0, c1] = b.children(p);
+                let [c0, c1] = kids[slot(p)];
                 stack.extend([(c0, c1), (c1, c1), (c0, c0)]);
             }
             continue;
@@ -98,10 +98,10 @@ pub fn self_collide_into(
         }
         // Descend the larger box, or whichever is not a leaf.
         if q.is_leaf() || (!p.is_leaf() && bp.extent() >= bq.extent()) {
-            let [c0, c1] = b.children(p);
+            let [c0, c1] = kids[slot(p)];
             stack.extend([(c1, q), (c0, q)]);
         } else {
-            let [c0, c1] = b.children(q);
+            let [c0, c1] = kids[slot(q)];
             stack.extend([(p, c1), (p, c0)]);
         }
     }
@@ -165,14 +165,18 @@ impl Aabb {
     }
 }
 
-/// The boxes of every node: the inner nodes' by index, then the leaves' in leaf order.
-/// `OutOfMemory` if they cannot be allocated.
-fn node_boxes(b: &Bvh) -> Result<Vec<Aabb>, Error> {
+/// The boxes of every node (the inner nodes' by index, then the leaves' in leaf order) and the
+/// inner nodes' children: the search reads only these two arrays, a few bytes per node, not the
+/// model's nodes. `OutOfMemory` if they cannot be allocated.
+#[allow(clippy::type_complexity)]
+fn node_boxes(b: &Bvh) -> Result<(Vec<Aabb>, Vec<[NodeRef; 2]>), Error> {
     let n = b.num_tris();
     let n_inner = n - 1;
-    let mut boxes = Vec::new();
+    let (mut boxes, mut kids) = (Vec::new(), Vec::new());
     boxes
         .try_reserve_exact(n_inner + n)
+        .map_err(|_| Error::OutOfMemory)?;
+    kids.try_reserve_exact(n_inner)
         .map_err(|_| Error::OutOfMemory)?;
     let empty = Aabb {
         lo: [f32::INFINITY; 3],
@@ -180,8 +184,9 @@ fn node_boxes(b: &Bvh) -> Result<Vec<Aabb>, Error> {
     };
     boxes.resize(n_inner, empty);
     boxes.extend((0..n).map(|t| Aabb::of_tri(&b.tri(t))));
+    kids.resize(n_inner, [NodeRef::default(); 2]);
     if n_inner == 0 {
-        return Ok(boxes);
+        return Ok((boxes, kids));
     }
     // Inner nodes after their children: a depth-first walk that visits each node twice.
     let slot = |r: NodeRef| match r.kind() {
@@ -193,6 +198,7 @@ fn node_boxes(b: &Bvh) -> Result<Vec<Aabb>, Error> {
         let [c0, c1] = b.children(r);
         if children_done {
             boxes[slot(r)] = boxes[slot(c0)].union(&boxes[slot(c1)]);
+            kids[slot(r)] = [c0, c1];
             continue;
         }
         stack.push((r, true));
@@ -202,7 +208,7 @@ fn node_boxes(b: &Bvh) -> Result<Vec<Aabb>, Error> {
             }
         }
     }
-    Ok(boxes)
+    Ok((boxes, kids))
 }
 
 /// Whether two triangles of one model count as self-intersecting: they share a point, and unless
