@@ -96,8 +96,12 @@ pub fn self_collide_into(
             }
             continue;
         }
-        // Descend the larger box, or whichever is not a leaf.
-        if q.is_leaf() || (!p.is_leaf() && bp.extent() >= bq.extent()) {
+        // Both inner: descend both at once (the four pairs of children). Otherwise the one that
+        // is not a leaf.
+        if !p.is_leaf() && !q.is_leaf() {
+            let ([p0, p1], [q0, q1]) = (kids[slot(p)], kids[slot(q)]);
+            stack.extend([(p1, q1), (p1, q0), (p0, q1), (p0, q0)]);
+        } else if q.is_leaf() {
             let [c0, c1] = kids[slot(p)];
             stack.extend([(c1, q), (c0, q)]);
         } else {
@@ -156,12 +160,6 @@ impl Aabb {
         (self.lo[0] <= o.hi[0] && o.lo[0] <= self.hi[0])
             && (self.lo[1] <= o.hi[1] && o.lo[1] <= self.hi[1])
             && (self.lo[2] <= o.hi[2] && o.lo[2] <= self.hi[2])
-    }
-
-    /// The sum of its extents (which box of a pair to descend).
-    #[inline(always)]
-    fn extent(&self) -> f32 {
-        (self.hi[0] - self.lo[0]) + (self.hi[1] - self.lo[1]) + (self.hi[2] - self.lo[2])
     }
 }
 
