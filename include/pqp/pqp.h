@@ -1026,16 +1026,19 @@ double pqp_collide_result_query_time_secs(const struct pqp_collide_result *r);
  *
  * Read the answer with the collision result getters: pqp_collide_result_id1 is the id of the
  * triangle added first, pqp_collide_result_id2 the other's. The model's hierarchy is searched
- * against itself, so a mesh without self-intersections costs about as much as its neighbour
- * pairs (see BENCHMARKS.md, Self-collision).
+ * against itself, on axis-aligned boxes of its nodes computed for the call, so a mesh without
+ * self-intersections costs about as much as its neighbour pairs (see BENCHMARKS.md,
+ * Self-collision).
  *
  * @param r     the result to fill (its previous answer is replaced).
  * @param m     the model (built).
  * @param flag  PQP_ALL_CONTACTS to find every pair, PQP_FIRST_CONTACT to stop at the first found.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if r or m is NULL; PQP_ERR_INVALID_ARGUMENT if flag is
  *         neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_INTERNAL on an internal fault (r is then reset to its freshly created
- *         state). On any other error r is left unchanged.
+ *         built; PQP_ERR_OUT_OF_MEMORY if the search's boxes (24 bytes per triangle and per
+ *         inner node, for the duration of the call) cannot be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault (r is then reset to its freshly created state). On any other error r is
+ *         left unchanged.
  * Thread safety: any number of queries may use the same model at once from different threads;
  *                r must not be used by another thread during the call.
  */

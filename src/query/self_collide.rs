@@ -1,18 +1,22 @@
 //! Self-collision: which pairs of distinct triangles of one model intersect, neighbours that meet
 //! only in what they share excepted.
 //!
-//! The hierarchy is searched against itself (see `collide::search_pairs`): a node against itself
-//! is its two children against themselves and against each other, so each pair of triangles is
-//! met once, at the node where their paths part, and pairs in volumes that do not overlap are
-//! never looked at. Neighbours in a mesh always have overlapping volumes, so every pair sharing a
+//! The hierarchy is searched against itself: a node against itself is its two children against
+//! themselves and against each other, so each pair of triangles is met once, at the node where
+//! their paths part, and pairs in volumes that do not overlap are never looked at. The volumes
+//! are axis-aligned boxes of the nodes, computed for the query (`Aabb`): one model needs no
+//! relative pose, and their test is a few comparisons; the model's own volumes (oriented boxes
+//! or swept sphere volumes, for queries between posed models) are not used. Neighbours in a mesh always have overlapping volumes, so every pair sharing a
 //! vertex or an edge reaches the triangle test: [`self_contact`] settles most of them with one
 //! filtered orientation test.
 
-use super::collide::{CollideResult, ContactMode, ContactPair, search_pairs};
+use super::Stats;
+use super::collide::{CollideResult, ContactMode, ContactPair};
+use crate::bvh::{Bvh, NodeKind, NodeRef};
 use crate::error::Error;
 use crate::geometry::predicates::{P2, PlaneFilter, orient2d, orient3d, orient3d_exact};
 use crate::geometry::{Tri, tri_overlap};
-use crate::math::{RelPose, Vec3};
+use crate::math::Vec3;
 use crate::model::Model;
 use std::time::Instant;
 
@@ -48,25 +52,161 @@ pub fn self_collide_into(
 ) -> Result<(), Error> {
     let start = Instant::now();
     let b = m.bvh()?;
+    let (boxes, kids) = node_boxes(b)?;
     let pairs = result.pairs_mut();
     pairs.clear();
-    let leaf_pair = |s: usize, t: usize, _: &Tri| {
-        self_contact(&b.tri(s), &b.tri(t)).then(|| {
-            let (first, second) = if b.added[s] < b.added[t] {
-                (s, t)
-            } else {
-                (t, s)
-            };
-            ContactPair {
-                id1: b.ids[first],
-                id2: b.ids[second],
-            }
-        })
+    let mut stats = Stats::default();
+    let n_inner = b.num_tris() - 1;
+    let slot = |r: NodeRef| match r.kind() {
+        NodeKind::Inner(i) => i,
+        NodeKind::Leaf(t) => n_inner + t,
     };
-    let mut stats = search_pairs(pairs, b, b, &RelPose::identity(), mode, true, leaf_pair);
+    let mut stack = vec![(b.root(), b.root())];
+    while let Some((p, q)) = stack.pop() {
+        if p == q {
+            // A node against itself: its children against themselves and each other.
+            if !p.is_leaf() {
+                let [c0, c1] = kids[slot(p)];
+                stack.extend([(c0, c1), (c1, c1), (c0, c0)]);
+            }
+            continue;
+        }
+        let (bp, bq) = (&boxes[slot(p)], &boxes[slot(q)]);
+        stats.bv_tests += 1;
+        if !bp.overlaps(bq) {
+            // Apart (so sharing no vertex either).
+            continue;
+        }
+        if p.is_leaf() && q.is_leaf() {
+            let (s, t) = (p.triangle(), q.triangle());
+            stats.tri_tests += 1;
+            if self_contact(&b.tri(s), &b.tri(t)) {
+                let (first, second) = if b.added[s] < b.added[t] {
+                    (s, t)
+                } else {
+                    (t, s)
+                };
+                pairs.push(ContactPair {
+                    id1: b.ids[first],
+                    id2: b.ids[second],
+                });
+                if mode == ContactMode::First {
+                    break;
+                }
+            }
+            continue;
+        }
+        // Both inner: descend both at once (the four pairs of children). Otherwise the one that
+        // is not a leaf.
+        if !p.is_leaf() && !q.is_leaf() {
+            let ([p0, p1], [q0, q1]) = (kids[slot(p)], kids[slot(q)]);
+            stack.extend([(p1, q1), (p1, q0), (p0, q1), (p0, q0)]);
+        } else if q.is_leaf() {
+            let [c0, c1] = kids[slot(p)];
+            stack.extend([(c1, q), (c0, q)]);
+        } else {
+            let [c0, c1] = kids[slot(q)];
+            stack.extend([(p, c1), (p, c0)]);
+        }
+    }
     stats.query_time_secs = start.elapsed().as_secs_f64();
     result.stats = stats;
     Ok(())
+}
+
+/// An axis-aligned box in single precision, rounded outward: it holds the box of doubles it was
+/// made from, so boxes apart are apart exactly. Against itself a model needs no relative pose,
+/// and in a mesh most pairs the search meets are neighbours whose volumes overlap: a box test
+/// (six comparisons) costs much less than the oriented boxes' separating axis test, and
+/// single precision halves the memory the search walks through.
+#[derive(Clone, Copy, Debug)]
+struct Aabb {
+    lo: [f32; 3],
+    hi: [f32; 3],
+}
+
+/// The largest float not above `x`.
+fn f32_down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x { y.next_down() } else { y }
+}
+
+/// The smallest float not below `x`.
+fn f32_up(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) < x { y.next_up() } else { y }
+}
+
+impl Aabb {
+    fn of_tri(t: &Tri) -> Aabb {
+        let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
+        for k in 0..3 {
+            lo[k] = f32_down(t[0][k].min(t[1][k]).min(t[2][k]));
+            hi[k] = f32_up(t[0][k].max(t[1][k]).max(t[2][k]));
+        }
+        Aabb { lo, hi }
+    }
+
+    fn union(&self, o: &Aabb) -> Aabb {
+        Aabb {
+            lo: std::array::from_fn(|k| self.lo[k].min(o.lo[k])),
+            hi: std::array::from_fn(|k| self.hi[k].max(o.hi[k])),
+        }
+    }
+
+    /// Whether they share a point (touching counts).
+    #[inline(always)]
+    fn overlaps(&self, o: &Aabb) -> bool {
+        (self.lo[0] <= o.hi[0] && o.lo[0] <= self.hi[0])
+            && (self.lo[1] <= o.hi[1] && o.lo[1] <= self.hi[1])
+            && (self.lo[2] <= o.hi[2] && o.lo[2] <= self.hi[2])
+    }
+}
+
+/// The boxes of every node (the inner nodes' by index, then the leaves' in leaf order) and the
+/// inner nodes' children: the search reads only these two arrays, a few bytes per node, not the
+/// model's nodes. `OutOfMemory` if they cannot be allocated.
+#[allow(clippy::type_complexity)]
+fn node_boxes(b: &Bvh) -> Result<(Vec<Aabb>, Vec<[NodeRef; 2]>), Error> {
+    let n = b.num_tris();
+    let n_inner = n - 1;
+    let (mut boxes, mut kids) = (Vec::new(), Vec::new());
+    boxes
+        .try_reserve_exact(n_inner + n)
+        .map_err(|_| Error::OutOfMemory)?;
+    kids.try_reserve_exact(n_inner)
+        .map_err(|_| Error::OutOfMemory)?;
+    let empty = Aabb {
+        lo: [f32::INFINITY; 3],
+        hi: [f32::NEG_INFINITY; 3],
+    };
+    boxes.resize(n_inner, empty);
+    boxes.extend((0..n).map(|t| Aabb::of_tri(&b.tri(t))));
+    kids.resize(n_inner, [NodeRef::default(); 2]);
+    if n_inner == 0 {
+        return Ok((boxes, kids));
+    }
+    // Inner nodes after their children: a depth-first walk that visits each node twice.
+    let slot = |r: NodeRef| match r.kind() {
+        NodeKind::Inner(i) => i,
+        NodeKind::Leaf(t) => n_inner + t,
+    };
+    let mut stack = vec![(b.root(), false)];
+    while let Some((r, children_done)) = stack.pop() {
+        let [c0, c1] = b.children(r);
+        if children_done {
+            boxes[slot(r)] = boxes[slot(c0)].union(&boxes[slot(c1)]);
+            kids[slot(r)] = [c0, c1];
+            continue;
+        }
+        stack.push((r, true));
+        for c in [c0, c1] {
+            if !c.is_leaf() {
+                stack.push((c, false));
+            }
+        }
+    }
+    Ok((boxes, kids))
 }
 
 /// Whether two triangles of one model count as self-intersecting: they share a point, and unless
@@ -116,11 +256,20 @@ pub fn self_contact(a: &Tri, b: &Tri) -> bool {
         let j = in_a.iter().position(|&s| !s).unwrap_or(0);
         let (p, q, x, y) = (a[(i + 1) % 3], a[(i + 2) % 3], a[i], b[j]);
         if p != q {
+            // Sides of the edge first, in a coordinate plane where both project with area (two
+            // orientations in 2D, certain in float but for nearly degenerate triangles): on
+            // opposite sides they meet only in the edge, coplanar or not. Only pairs folded
+            // onto the same side (rare in a mesh) need the coplanarity test, whose float filter
+            // fails on the exactly planar quads of many meshes.
+            let side = same_side(&p, &q, &x, &y);
+            if side == Some(false) {
+                return false;
+            }
             if orient3d(&p, &q, &x, &y) != 0.0 {
                 // Not coplanar (so both have area): their planes meet in the edge's line.
                 return false;
             }
-            if let Some(folded) = same_side(&p, &q, &x, &y) {
+            if let Some(folded) = side {
                 return folded;
             }
             edge = Some((p, q));
@@ -184,11 +333,31 @@ fn unshared_part_meets(
 fn segment_meets(s0: &Vec3, s1: &Vec3, t: &Tri) -> bool {
     // One plane for both ends; the exact sign only where the float one is not certain.
     let plane = PlaneFilter::new(&t[0], &t[1], &t[2]);
-    let side = |s: &Vec3| match plane.eval(s) {
-        (v, true) => v,
-        _ => orient3d_exact(&t[0], &t[1], &t[2], s),
+    let ((f0, certain0), (f1, certain1)) = (plane.eval(s0), plane.eval(s1));
+    // Whether the line turns both ways around t's edges: it passes beside t (or, for a
+    // degenerate t, is not coplanar with it), so the segment cannot meet t.
+    let beside = || {
+        let e = [
+            orient3d(s0, s1, &t[0], &t[1]),
+            orient3d(s0, s1, &t[1], &t[2]),
+            orient3d(s0, s1, &t[2], &t[0]),
+        ];
+        e.iter().any(|&x| x > 0.0) && e.iter().any(|&x| x < 0.0)
     };
-    let (o0, o1) = (side(s0), side(s1));
+    // An end nearly in t's plane (in a mesh of planar quads, the far corner of a quad is in the
+    // plane of the quad's other triangle): the line's turns, well conditioned there, settle most
+    // such pairs before the exact sides are computed.
+    if !(certain0 && certain1) && beside() {
+        return false;
+    }
+    let side = |s: &Vec3, f: f64, certain: bool| {
+        if certain {
+            f
+        } else {
+            orient3d_exact(&t[0], &t[1], &t[2], s)
+        }
+    };
+    let (o0, o1) = (side(s0, f0, certain0), side(s1, f1, certain1));
     if (o0 > 0.0 && o1 > 0.0) || (o0 < 0.0 && o1 < 0.0) {
         return false;
     }
@@ -196,12 +365,7 @@ fn segment_meets(s0: &Vec3, s1: &Vec3, t: &Tri) -> bool {
         // In the plane of t, or t has none (degenerate).
         return tri_overlap(t, &[*s0, *s1, *s1]);
     }
-    let e = [
-        orient3d(s0, s1, &t[0], &t[1]),
-        orient3d(s0, s1, &t[1], &t[2]),
-        orient3d(s0, s1, &t[2], &t[0]),
-    ];
-    !(e.iter().any(|&x| x > 0.0) && e.iter().any(|&x| x < 0.0))
+    !beside()
 }
 
 /// Whether `x` lies on the segment `p q` (exactly: collinear, and between in every coordinate).
@@ -236,4 +400,100 @@ fn same_side(p: &Vec3, q: &Vec3, x: &Vec3, y: &Vec3) -> Option<bool> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::{Random, Rng};
+
+    type I3 = [i64; 3];
+
+    fn sub(a: I3, b: I3) -> I3 {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+
+    fn cross(a: I3, b: I3) -> I3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    fn dot(a: I3, b: I3) -> i64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    fn v(a: I3) -> Vec3 {
+        Vec3::new(a[0] as f64, a[1] as f64, a[2] as f64)
+    }
+
+    /// Small integer points: exact arithmetic decides coplanarity and sides independently, and
+    /// coplanar and collinear configurations are frequent.
+    fn point(rng: &mut Rng, r: i64) -> I3 {
+        [rng.int(-r, r), rng.int(-r, r), rng.int(-r, r)]
+    }
+
+    #[test]
+    fn shared_edge_pairs_meet_only_folded() {
+        // Two triangles with area sharing edge p q meet beyond it exactly when they are
+        // coplanar and on the same side of it (integer arithmetic, independently of the
+        // predicates).
+        let mut rng = Rng::new(20);
+        let (mut folded, mut flat, mut bent) = (0, 0, 0);
+        for _ in 0..200_000 {
+            let r = if rng.below(2) == 0 { 2 } else { 6 };
+            let (p, q, x, y) = (
+                point(&mut rng, r),
+                point(&mut rng, r),
+                point(&mut rng, r),
+                point(&mut rng, r),
+            );
+            let (n, m) = (cross(sub(q, p), sub(x, p)), cross(sub(q, p), sub(y, p)));
+            if n == [0; 3] || m == [0; 3] {
+                continue;
+            }
+            let coplanar = dot(sub(y, p), n) == 0;
+            let want = coplanar && dot(n, m) > 0;
+            folded += usize::from(want);
+            flat += usize::from(coplanar && !want);
+            bent += usize::from(!coplanar);
+            let (a, b) = ([v(p), v(q), v(x)], [v(q), v(p), v(y)]);
+            assert_eq!(self_contact(&a, &b), want, "{p:?} {q:?} {x:?} {y:?}");
+            assert_eq!(self_contact(&b, &a), want, "{p:?} {q:?} {x:?} {y:?}");
+        }
+        assert!(
+            folded > 1000 && flat > 1000 && bent > 1000,
+            "{folded} {flat} {bent}"
+        );
+    }
+
+    #[test]
+    fn segment_test_equals_the_triangle_test_on_the_segment() {
+        // segment_meets is tri_overlap of the segment taken as a triangle; small integer
+        // coordinates make ends in the triangle's plane (the case settled first by the line's
+        // turns) and coplanar segments frequent. Also at a scale where coordinates round.
+        let mut rng = Rng::new(21);
+        let (mut met, mut in_plane) = (0, 0);
+        for k in 0..300_000 {
+            let r = if k % 2 == 0 { 2 } else { 5 };
+            let t = [point(&mut rng, r), point(&mut rng, r), point(&mut rng, r)];
+            let (s0, s1) = (point(&mut rng, r), point(&mut rng, r));
+            let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+            in_plane += usize::from(dot(sub(s0, t[0]), n) == 0 || dot(sub(s1, t[0]), n) == 0);
+            let scale = if k % 3 == 0 { 0.1 } else { 1.0 };
+            let f = |a: I3| v(a) * scale;
+            let tri = [f(t[0]), f(t[1]), f(t[2])];
+            let (a, b) = (f(s0), f(s1));
+            let want = tri_overlap(&tri, &[a, b, b]);
+            met += usize::from(want);
+            assert_eq!(
+                segment_meets(&a, &b, &tri),
+                want,
+                "{t:?} {s0:?} {s1:?} x {scale}"
+            );
+        }
+        assert!(met > 10_000 && in_plane > 10_000, "{met} {in_plane}");
+    }
 }
