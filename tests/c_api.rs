@@ -64,6 +64,11 @@ fn point_queries_from_c() {
 }
 
 #[test]
+fn primitives_from_c() {
+    c_program("primitives");
+}
+
+#[test]
 fn batch_queries_from_c() {
     c_program("batch");
 }

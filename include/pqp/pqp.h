@@ -131,6 +131,13 @@
 #define PQP_ERR_INVALID_DATA (-14)
 
 /**
+ * The model holds a primitive (pqp_model_set_sphere, pqp_model_set_capsule, pqp_model_set_box)
+ * and the call needs triangles or a hierarchy: closest point, signed distance, rays,
+ * self-collision, time of contact, refit, serialize, PQP 1.3's volume view (pqp_model_bvs).
+ */
+#define PQP_ERR_NOT_A_TRIANGLE_MESH (-15)
+
+/**
  * Collision flag: report every colliding triangle pair.
  */
 #define PQP_ALL_CONTACTS 1
@@ -2333,6 +2340,65 @@ int pqp_model_serialize(const struct pqp_model *m, void *buffer, size_t capacity
  * Thread safety: must not run concurrently with any other call using m.
  */
 int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
+
+/**
+ * Replaces a model's contents (triangles or a primitive, built or not) with a solid sphere of
+ * `radius` centred on the model's origin, built: it can be queried at once.
+ *
+ * A primitive model works in pqp_collide, pqp_distance (and pqp_distance_search),
+ * pqp_tolerance (and pqp_tolerance_search), pqp_within_distance and the batch calls, against
+ * triangle models and against other primitives, with exact answers (as exact as the triangle
+ * distance: a triangle's distance from the primitive's core, less its radius). It is a solid: a
+ * triangle inside it collides with it and is at distance 0. In pair lists and results the
+ * primitive is one element with id 0 and triangle index 0; the triangle cache and search front
+ * of a distance result are not used with it. Its volume choices are kept for a later build.
+ *
+ * It holds no triangles: pqp_model_num_tris gives 0, pqp_model_tris 0 triangles, and the calls
+ * that need triangles or a hierarchy (pqp_closest_point, pqp_signed_distance, pqp_ray_cast and
+ * its batch, pqp_self_collide, pqp_time_of_contact, pqp_model_refit, pqp_model_serialize,
+ * pqp_model_bvs) return PQP_ERR_NOT_A_TRIANGLE_MESH. pqp_model_add_tri and pqp_model_end return
+ * PQP_ERR_BUILD_OUT_OF_SEQUENCE as on any built model; pqp_model_begin clears it into an empty
+ * model being built (returning PQP_ERR_BUILD_OUT_OF_SEQUENCE, as on any built model).
+ *
+ * @param m       the model.
+ * @param radius  the sphere's radius, >= 0 (0 is a point), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_sphere(struct pqp_model *m, double radius);
+
+/**
+ * Replaces a model's contents with a solid capsule, built: the points within `radius` of the
+ * segment of `length` on the model's z axis, centred on its origin (from (0, 0, -length/2) to
+ * (0, 0, length/2); FCL's Capsule(radius, lz) is the same shape). Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m       the model.
+ * @param radius  the radius, >= 0, at most 1e150.
+ * @param length  the segment's length, >= 0 (0 gives a sphere), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius or
+ *         length is negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal
+ *         fault. On any error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_capsule(struct pqp_model *m, double radius, double length);
+
+/**
+ * Replaces a model's contents with a solid box, built: side lengths x, y and z along the model's
+ * axes, centred on its origin (FCL's Box(x, y, z) is the same shape). A zero side makes it flat
+ * (a rectangle, a segment or a point), still a solid for every query. Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m        the model.
+ * @param x, y, z  the side lengths, each >= 0 and at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if a side is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_box(struct pqp_model *m, double x, double y, double z);
 
 #ifdef __cplusplus
 }  // extern "C"
