@@ -11,7 +11,7 @@ use super::Stats;
 use crate::bounding_volume::{DistanceVolume, Ssv};
 use crate::bvh::{Bvh, NodeRef};
 use crate::error::Error;
-use crate::geometry::{ClosestPoints, Tri, tri_distance};
+use crate::geometry::{ClosestPoints, Tri, tri_distance, tri_overlap};
 use crate::math::{Pose, RelPose, Vec3};
 use crate::model::{Core, Model, Primitive};
 use std::time::Instant;
@@ -148,6 +148,11 @@ trait Visit {
     /// An element pair (the mesh's leaf slot, 0 for a primitive) and its closest points in the
     /// primitive's frame; `true` stops the search.
     fn element(&mut self, slot: usize, gap: ClosestPoints) -> bool;
+    /// Whether only contact matters: then a triangle's `gap` is distance 0 when it touches the
+    /// primitive, else an infinite distance (no points), found by the cheaper overlap tests.
+    fn contact_only(&self) -> bool {
+        false
+    }
 }
 
 /// Searches `bvh` (posed by `rel` in the primitive's frame) against the primitive, nearer child
@@ -178,7 +183,28 @@ fn search_mesh(
             stats.tri_tests += 1;
             let slot = n.triangle();
             let t = bvh.tri(slot).map(|p| rel.apply(&p));
-            if visit.element(slot, swept(core_triangle(&core, &t), radius, 0.0)) {
+            // Against a box, the triangle's own box first: most leaves a volume bound lets in end
+            // here, for a fraction of a face test.
+            if let Core::Box(h) = core {
+                let gap = box_gap(&h, &t);
+                if gap >= cutoff {
+                    pruned = pruned.min(gap);
+                    continue;
+                }
+            }
+            let gap = match core {
+                Core::Box(h) if visit.contact_only() => ClosestPoints {
+                    distance: if box_meets_triangle(&h, &t) {
+                        0.0
+                    } else {
+                        f64::INFINITY
+                    },
+                    p: t[0],
+                    q: t[0],
+                },
+                _ => swept(core_triangle(&core, &t), radius, 0.0),
+            };
+            if visit.element(slot, gap) {
                 break;
             }
             continue;
@@ -306,33 +332,37 @@ fn box_faces(h: &Vec3) -> [Tri; 12] {
     out
 }
 
+/// The triangles of the faces of the box of half sides `h` (centred on the origin, on the axes)
+/// that can hold its point nearest to the triangle `t`, or a point `t` meets: the faces with a
+/// vertex of `t` on or beyond their plane. The box's point nearest to a point `q` outside lies on a
+/// face only if `q` is on or beyond that face's plane, and a triangle meeting the surface has a
+/// point in the plane of a face it meets. None: every vertex is strictly inside, and so is `t`.
+fn facing(h: &Vec3, t: &Tri) -> impl Iterator<Item = Tri> {
+    let faces = box_faces(h);
+    let t = *t;
+    let h = *h;
+    (0..6)
+        .filter(move |&j| {
+            let (k, sign) = (j / 2, if j % 2 == 0 { -1.0 } else { 1.0 });
+            // Exact: negation and comparison do not round.
+            t.iter().any(|v| sign * v[k] >= h[k])
+        })
+        .flat_map(move |j| [faces[2 * j], faces[2 * j + 1]])
+}
+
 /// The closest points of the solid box of half sides `h` (centred on the origin, on the axes) and
 /// the triangle `t` (on the box, then on `t`): distance 0 with a common point when the triangle
-/// meets the box (crosses or touches its surface, or lies inside it).
-///
-/// Only faces with a vertex of `t` on or beyond their plane are measured: the box's point nearest
-/// to a point `q` outside lies on a face only if `q` is on or beyond that face's plane, and a
-/// triangle meeting the surface has a point in the plane of a face it meets. When no face is
-/// measured every vertex is strictly inside, and so is the triangle.
+/// meets the box (crosses or touches its surface, or lies inside it). Measured on the faces
+/// [`facing`] gives.
 pub(crate) fn box_triangle(h: &Vec3, t: &Tri) -> ClosestPoints {
-    let faces = box_faces(h);
     let mut best: Option<ClosestPoints> = None;
-    for k in 0..3 {
-        for (side, sign) in [-1.0, 1.0].into_iter().enumerate() {
-            // Exact: negation and comparison do not round.
-            if !t.iter().any(|v| sign * v[k] >= h[k]) {
-                continue;
-            }
-            let f = 2 * (2 * k + side);
-            for face in &faces[f..f + 2] {
-                let c = tri_distance(face, t);
-                if c.distance == 0.0 {
-                    return c;
-                }
-                if best.is_none_or(|b| c.distance < b.distance) {
-                    best = Some(c);
-                }
-            }
+    for face in facing(h, t) {
+        let c = tri_distance(&face, t);
+        if c.distance == 0.0 {
+            return c;
+        }
+        if best.is_none_or(|b| c.distance < b.distance) {
+            best = Some(c);
         }
     }
     best.unwrap_or(ClosestPoints {
@@ -340,6 +370,33 @@ pub(crate) fn box_triangle(h: &Vec3, t: &Tri) -> ClosestPoints {
         p: t[0],
         q: t[0],
     })
+}
+
+/// A lower bound on the distance between the box of half sides `h` and the triangle `t`: the
+/// distance to the box around `t` on the same axes, rounded down (by more than the few roundings
+/// of its computation).
+fn box_gap(h: &Vec3, t: &Tri) -> f64 {
+    let mut sum = 0.0;
+    for k in 0..3 {
+        let lo = t[0][k].min(t[1][k]).min(t[2][k]);
+        let hi = t[0][k].max(t[1][k]).max(t[2][k]);
+        let g = (lo - h[k]).max(-h[k] - hi).max(0.0);
+        sum += g * g;
+    }
+    sum.sqrt() * (1.0 - 8.0 * f64::EPSILON)
+}
+
+/// Whether the triangle `t` meets the solid box of half sides `h`: exactly when [`box_triangle`]
+/// answers 0 (the exact overlap test agrees with the exact distance), for less work.
+fn box_meets_triangle(h: &Vec3, t: &Tri) -> bool {
+    let mut faced = false;
+    for face in facing(h, t) {
+        if tri_overlap(&face, t) {
+            return true;
+        }
+        faced = true;
+    }
+    !faced
 }
 
 /// Ids `(id1, id2)` of element pairs, and the work of finding them.
@@ -379,6 +436,9 @@ pub(super) fn pairs(
             }
             self.pairs.push(self.pair.contact(slot));
             self.first
+        }
+        fn contact_only(&self) -> bool {
+            self.tolerance == 0.0
         }
     }
     let start = Instant::now();
