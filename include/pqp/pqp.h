@@ -712,6 +712,7 @@ int pqp_model_is_built(const struct pqp_model *m);
  * @param num_tris   the number of triangles; must be the model's (pqp_model_num_tris).
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m or triangles is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
  *         not built; PQP_ERR_INVALID_ARGUMENT if num_tris is not the model's count;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_MODEL_OUT_OF_MEMORY if the new arrays could not be allocated;
  *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
@@ -765,6 +766,7 @@ int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *
  * @param num_bvs  receives the number of volumes (0 on any error).
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
  *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
  *                all get the same array), not with build calls on m.
@@ -1041,7 +1043,9 @@ double pqp_collide_result_query_time_secs(const struct pqp_collide_result *r);
  * @param flag  PQP_ALL_CONTACTS to find every pair, PQP_FIRST_CONTACT to stop at the first found.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if r or m is NULL; PQP_ERR_INVALID_ARGUMENT if flag is
  *         neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_INTERNAL on an internal fault (r is then reset to its freshly created
+ *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_INTERNAL on an internal fault (r is then reset to its freshly created
  *         state). On any other error r is left unchanged.
  * Thread safety: any number of queries may use the same model at once from different threads;
  *                r must not be used by another thread during the call.
@@ -1479,7 +1483,9 @@ int pqp_within_distance(struct pqp_collide_result *r,
  * @param max_distance  the largest distance of interest, >= 0; INFINITY for no limit. Smaller
  *                      values make the search faster.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
- *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
  *         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
  *         internal fault. On an error nothing is written. out may overlap the inputs.
@@ -1512,7 +1518,9 @@ int pqp_closest_point(struct pqp_point_result *out,
  * @param m      the model (built).
  * @param point  the point, 3 doubles, world coordinates.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
- *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
  *         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
  *         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
@@ -1665,7 +1673,9 @@ int pqp_tolerance_batch(int *closer,
  * @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
  * @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
  *         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
  *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
  *         1e150 in magnitude, or a direction coordinate is NaN or infinite; PQP_ERR_INTERNAL on an
@@ -1747,6 +1757,7 @@ int pqp_ray_cast_batch(struct pqp_ray_hit *hits,
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
  *         tolerance is not above 0 (or NaN), or a rotation is not one to within 1e-6 (a
  *         reflection included); PQP_ERR_UNPROCESSED_MODEL if a model is not built;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if a model holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_INTERNAL on an internal fault. On any error out is left unchanged.
  * Thread safety: any number of queries may use the same models at once from different threads.
@@ -2309,6 +2320,7 @@ const char *pqp_version(void);
  * @param size      receives the number of bytes written, or needed.
  * @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
  *         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
  *         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may run concurrently with queries and other getters on m (a built model may be
