@@ -391,11 +391,11 @@ static void texts(void)
     CHECK(strcmp(pqp_error_string(PQP_OK), "no error") == 0);
     CHECK(strcmp(pqp_error_string(PQP_ERR_NULL_POINTER), "null pointer") == 0);
     CHECK(strcmp(pqp_error_string(1), "unknown error code") == 0);
-    CHECK(strcmp(pqp_error_string(-15), "unknown error code") == 0);
+    CHECK(strcmp(pqp_error_string(-16), "unknown error code") == 0);
     CHECK(strcmp(pqp_error_string(-2147483647 - 1), "unknown error code") == 0);
     CHECK(strcmp(pqp_version(), "1.0.0") == 0);
     /* Every code has its own text. */
-    for (c = PQP_ERR_INVALID_DATA; c <= PQP_OK; c++) {
+    for (c = PQP_ERR_NOT_A_TRIANGLE_MESH; c <= PQP_OK; c++) {
         int d;
         for (d = c + 1; d <= PQP_OK; d++) CHECK(strcmp(pqp_error_string(c), pqp_error_string(d)) != 0);
     }

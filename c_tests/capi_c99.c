@@ -68,7 +68,8 @@ static void test_misc(void) {
                                 PQP_ERR_DEGENERATE_POINTS,
                                 PQP_ERR_INVALID_CONVEX_MESH,
                                 PQP_ERR_BUFFER_TOO_SMALL,
-                                PQP_ERR_INVALID_DATA};
+                                PQP_ERR_INVALID_DATA,
+                                PQP_ERR_NOT_A_TRIANGLE_MESH};
     size_t i;
     CHECK(PQP_OK == 0 && PQP_ERR_MODEL_OUT_OF_MEMORY == -1 && PQP_ERR_OUT_OF_MEMORY == -2);
     CHECK(PQP_ERR_UNPROCESSED_MODEL == -3 && PQP_ERR_BUILD_OUT_OF_SEQUENCE == -4 && PQP_ERR_BUILD_EMPTY_MODEL == -5);
@@ -76,6 +77,7 @@ static void test_misc(void) {
     CHECK(PQP_ERR_NULL_POINTER == -9 && PQP_ERR_INTERNAL == -10);
     CHECK(PQP_ERR_DEGENERATE_POINTS == -11 && PQP_ERR_INVALID_CONVEX_MESH == -12);
     CHECK(PQP_ERR_BUFFER_TOO_SMALL == -13 && PQP_ERR_INVALID_DATA == -14);
+    CHECK(PQP_ERR_NOT_A_TRIANGLE_MESH == -15);
     CHECK(PQP_ALL_CONTACTS == 1 && PQP_FIRST_CONTACT == 2);
     CHECK(strcmp(pqp_version(), "1.0.0") == 0);
     for (i = 0; i < sizeof codes / sizeof codes[0]; ++i) {
@@ -83,7 +85,7 @@ static void test_misc(void) {
         CHECK(s != NULL && s[0] != '\0' && strcmp(s, "unknown error code") != 0);
     }
     CHECK(strcmp(pqp_error_string(12345), "unknown error code") == 0);
-    CHECK(strcmp(pqp_error_string(-15), "unknown error code") == 0);
+    CHECK(strcmp(pqp_error_string(-16), "unknown error code") == 0);
 }
 
 static void test_null_handling(void) {

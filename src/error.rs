@@ -48,6 +48,11 @@ pub enum Error {
     /// Bytes given as a saved model are not one: wrong magic or version, truncated, checksum
     /// mismatch, or contents that do not make a valid model (`PQP_ERR_INVALID_DATA`).
     InvalidData = -14,
+    /// The model holds a primitive (a sphere, capsule or box: `pqp_model_set_sphere` and the
+    /// like), and the call needs triangles or a hierarchy: closest point, signed distance, rays,
+    /// self-collision, time of contact, refit, saving, PQP 1.3's volume view
+    /// (`PQP_ERR_NOT_A_TRIANGLE_MESH`).
+    NotATriangleMesh = -15,
 }
 
 /// Largest accepted magnitude of a coordinate or translation. Beyond it squared lengths overflow
@@ -79,6 +84,7 @@ impl Error {
             Error::InvalidConvexMesh => "mesh is not a closed convex polyhedron",
             Error::BufferTooSmall => "buffer missing or too small (the needed size was reported)",
             Error::InvalidData => "data is not a valid saved model",
+            Error::NotATriangleMesh => "model is a primitive, not a triangle mesh",
         }
     }
 }

@@ -56,7 +56,7 @@ mod test_rng;
 
 pub use error::Error;
 pub use math::{Pose, RelPose, Vec3};
-pub use model::{BuildState, CollisionVolume, Model, VolumeKind};
+pub use model::{BuildState, CollisionVolume, Model, Primitive, VolumeKind};
 pub use query::{
     CollideResult, ContactMode, ContactPair, DistanceOptions, DistanceResult, PointResult, Search,
     Stats, Strategy, ToleranceResult, closest_point, collide, collide_batch, collide_into,

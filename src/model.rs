@@ -8,8 +8,13 @@ use crate::geometry::Tri;
 use crate::math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+// Swept-sphere primitives as models: `Model::set_sphere`, `set_capsule`, `set_box`.
+mod primitive;
 // Saved models: `Model::to_bytes`, `serialize_into`, `from_bytes`.
 mod saved;
+
+pub(crate) use primitive::Core;
+pub use primitive::Primitive;
 
 /// Where a model is in PQP's build protocol ([`Model::build_state`]); PQP 1.3's `build_state`,
 /// whose `PQP_BUILD_STATE_EMPTY`, `_BEGUN` and `_PROCESSED` are 0, 1 and 2 as here.
@@ -54,6 +59,8 @@ pub struct Model {
     /// The hierarchy's volumes, chosen before `end`.
     volume: VolumeKind,
     collision: CollisionVolume,
+    /// The primitive a built model holds instead of triangles (then `bvh` is `None`).
+    primitive: Option<Primitive>,
 }
 
 impl Default for Model {
@@ -74,6 +81,7 @@ impl Model {
             uid: 0,
             volume: VolumeKind::default(),
             collision: CollisionVolume::default(),
+            primitive: None,
         }
     }
 
@@ -130,6 +138,7 @@ impl Model {
         let was_empty = self.state == BuildState::Empty;
         self.pending = Vec::new();
         self.bvh = None;
+        self.primitive = None;
         self.uid = 0;
         // A hint is only a hint: a huge one must not abort the process.
         let _ = self.pending.try_reserve(capacity_hint.min(1 << 24));
@@ -212,7 +221,8 @@ impl Model {
     /// `Err(InvalidArgument)` if `tris.len()` is not [`num_triangles`](Model::num_triangles),
     /// `Err(NonFiniteCoordinate)` if a coordinate is NaN, infinite or beyond
     /// [`MAX_COORDINATE`] in magnitude (as [`add_triangle`](Model::add_triangle)),
-    /// `Err(ModelOutOfMemory)` if the new vertex arrays cannot be allocated.
+    /// `Err(ModelOutOfMemory)` if the new vertex arrays cannot be allocated,
+    /// `Err(NotATriangleMesh)` if the model holds a [`Primitive`].
     ///
     /// ```
     /// use pqp::Model;
@@ -221,6 +231,9 @@ impl Model {
     /// assert!(m.refit(&[]).is_err());
     /// ```
     pub fn refit(&mut self, tris: &[[[f64; 3]; 3]]) -> Result<(), Error> {
+        if self.primitive.is_some() {
+            return Err(Error::NotATriangleMesh);
+        }
         let volume = self.volume;
         let bvh = match (&self.state, &mut self.bvh) {
             (BuildState::Built, Some(b)) => b,
@@ -272,6 +285,7 @@ impl Model {
             uid: self.uid,
             volume: self.volume,
             collision: self.collision,
+            primitive: self.primitive,
         })
     }
 
@@ -314,7 +328,7 @@ impl Model {
         self.state
     }
 
-    /// Number of triangles stored (added so far, or in the built model).
+    /// Number of triangles stored (added so far, or in the built model; 0 for a [`Primitive`]).
     pub fn num_triangles(&self) -> usize {
         match &self.bvh {
             Some(b) => b.num_tris(),
@@ -329,11 +343,21 @@ impl Model {
         (std::mem::size_of::<Model>() + pending + bvh) as u64
     }
 
-    /// The hierarchy of a built model.
+    /// The hierarchy of a built triangle model (`Err(NotATriangleMesh)` for a [`Primitive`]).
     pub(crate) fn bvh(&self) -> Result<&Bvh, Error> {
-        match (&self.state, &self.bvh) {
-            (BuildState::Built, Some(b)) => Ok(b),
+        match (&self.state, &self.bvh, &self.primitive) {
+            (BuildState::Built, Some(b), _) => Ok(b),
+            (BuildState::Built, None, Some(_)) => Err(Error::NotATriangleMesh),
             _ => Err(Error::UnprocessedModel),
+        }
+    }
+
+    /// `Ok` for a built model, a triangle model or a [`Primitive`].
+    pub(crate) fn check_built(&self) -> Result<(), Error> {
+        if self.primitive.is_some() {
+            Ok(())
+        } else {
+            self.bvh().map(|_| ())
         }
     }
 

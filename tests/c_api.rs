@@ -64,6 +64,11 @@ fn point_queries_from_c() {
 }
 
 #[test]
+fn primitives_from_c() {
+    c_program("primitives");
+}
+
+#[test]
 fn batch_queries_from_c() {
     c_program("batch");
 }
@@ -188,6 +193,18 @@ fn demos_run() {
         let text = String::from_utf8_lossy(&out.stdout);
         assert!(text.contains("signed distance"), "{text}");
     }
+}
+
+/// The primitives example builds warning-free and runs.
+#[test]
+fn primitives_example_runs() {
+    let exe = build_program(&root().join("examples/primitives.c"), "c99", "primitives.c");
+    let out = c_toolchain::run(std::process::Command::new(&exe), "primitives.c");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("capsule r 0.05") && text.contains("not a triangle mesh"),
+        "{text}"
+    );
 }
 
 #[test]

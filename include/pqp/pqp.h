@@ -131,6 +131,13 @@
 #define PQP_ERR_INVALID_DATA (-14)
 
 /**
+ * The model holds a primitive (pqp_model_set_sphere, pqp_model_set_capsule, pqp_model_set_box)
+ * and the call needs triangles or a hierarchy: closest point, signed distance, rays,
+ * self-collision, time of contact, refit, serialize, PQP 1.3's volume view (pqp_model_bvs).
+ */
+#define PQP_ERR_NOT_A_TRIANGLE_MESH (-15)
+
+/**
  * Collision flag: report every colliding triangle pair.
  */
 #define PQP_ALL_CONTACTS 1
@@ -705,6 +712,7 @@ int pqp_model_is_built(const struct pqp_model *m);
  * @param num_tris   the number of triangles; must be the model's (pqp_model_num_tris).
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m or triangles is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
  *         not built; PQP_ERR_INVALID_ARGUMENT if num_tris is not the model's count;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_MODEL_OUT_OF_MEMORY if the new arrays could not be allocated;
  *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
@@ -758,6 +766,7 @@ int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *
  * @param num_bvs  receives the number of volumes (0 on any error).
  * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
  *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
  *                all get the same array), not with build calls on m.
@@ -1035,7 +1044,8 @@ double pqp_collide_result_query_time_secs(const struct pqp_collide_result *r);
  * @param flag  PQP_ALL_CONTACTS to find every pair, PQP_FIRST_CONTACT to stop at the first found.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if r or m is NULL; PQP_ERR_INVALID_ARGUMENT if flag is
  *         neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_OUT_OF_MEMORY if the search's boxes (24 bytes per triangle and per
+ *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere,
+ *         ...); PQP_ERR_OUT_OF_MEMORY if the search's boxes (24 bytes per triangle and per
  *         inner node, for the duration of the call) cannot be allocated; PQP_ERR_INTERNAL on an
  *         internal fault (r is then reset to its freshly created state). On any other error r is
  *         left unchanged.
@@ -1475,7 +1485,9 @@ int pqp_within_distance(struct pqp_collide_result *r,
  * @param max_distance  the largest distance of interest, >= 0; INFINITY for no limit. Smaller
  *                      values make the search faster.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
- *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
  *         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
  *         internal fault. On an error nothing is written. out may overlap the inputs.
@@ -1508,7 +1520,9 @@ int pqp_closest_point(struct pqp_point_result *out,
  * @param m      the model (built).
  * @param point  the point, 3 doubles, world coordinates.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
- *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+ *         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
  *         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
  *         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
@@ -1661,7 +1675,9 @@ int pqp_tolerance_batch(int *closer,
  * @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
  * @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
  *         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
  *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
  *         1e150 in magnitude, or a direction coordinate is NaN or infinite; PQP_ERR_INTERNAL on an
@@ -1743,6 +1759,7 @@ int pqp_ray_cast_batch(struct pqp_ray_hit *hits,
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
  *         tolerance is not above 0 (or NaN), or a rotation is not one to within 1e-6 (a
  *         reflection included); PQP_ERR_UNPROCESSED_MODEL if a model is not built;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if a model holds a primitive (pqp_model_set_sphere, ...);
  *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
  *         magnitude; PQP_ERR_INTERNAL on an internal fault. On any error out is left unchanged.
  * Thread safety: any number of queries may use the same models at once from different threads.
@@ -2305,6 +2322,7 @@ const char *pqp_version(void);
  * @param size      receives the number of bytes written, or needed.
  * @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
  *         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
  *         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
  *         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may run concurrently with queries and other getters on m (a built model may be
@@ -2336,6 +2354,65 @@ int pqp_model_serialize(const struct pqp_model *m, void *buffer, size_t capacity
  * Thread safety: must not run concurrently with any other call using m.
  */
 int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
+
+/**
+ * Replaces a model's contents (triangles or a primitive, built or not) with a solid sphere of
+ * `radius` centred on the model's origin, built: it can be queried at once.
+ *
+ * A primitive model works in pqp_collide, pqp_distance (and pqp_distance_search),
+ * pqp_tolerance (and pqp_tolerance_search), pqp_within_distance and the batch calls, against
+ * triangle models and against other primitives, with exact answers (as exact as the triangle
+ * distance: a triangle's distance from the primitive's core, less its radius). It is a solid: a
+ * triangle inside it collides with it and is at distance 0. In pair lists and results the
+ * primitive is one element with id 0 and triangle index 0; the triangle cache and search front
+ * of a distance result are not used with it. Its volume choices are kept for a later build.
+ *
+ * It holds no triangles: pqp_model_num_tris gives 0, pqp_model_tris 0 triangles, and the calls
+ * that need triangles or a hierarchy (pqp_closest_point, pqp_signed_distance, pqp_ray_cast and
+ * its batch, pqp_self_collide, pqp_time_of_contact, pqp_model_refit, pqp_model_serialize,
+ * pqp_model_bvs) return PQP_ERR_NOT_A_TRIANGLE_MESH. pqp_model_add_tri and pqp_model_end return
+ * PQP_ERR_BUILD_OUT_OF_SEQUENCE as on any built model; pqp_model_begin clears it into an empty
+ * model being built (returning PQP_ERR_BUILD_OUT_OF_SEQUENCE, as on any built model).
+ *
+ * @param m       the model.
+ * @param radius  the sphere's radius, >= 0 (0 is a point), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_sphere(struct pqp_model *m, double radius);
+
+/**
+ * Replaces a model's contents with a solid capsule, built: the points within `radius` of the
+ * segment of `length` on the model's z axis, centred on its origin (from (0, 0, -length/2) to
+ * (0, 0, length/2); FCL's Capsule(radius, lz) is the same shape). Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m       the model.
+ * @param radius  the radius, >= 0, at most 1e150.
+ * @param length  the segment's length, >= 0 (0 gives a sphere), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius or
+ *         length is negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal
+ *         fault. On any error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_capsule(struct pqp_model *m, double radius, double length);
+
+/**
+ * Replaces a model's contents with a solid box, built: side lengths x, y and z along the model's
+ * axes, centred on its origin (FCL's Box(x, y, z) is the same shape). A zero side makes it flat
+ * (a rectangle, a segment or a point), still a solid for every query. Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m        the model.
+ * @param x, y, z  the side lengths, each >= 0 and at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if a side is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_box(struct pqp_model *m, double x, double y, double z);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -36,6 +36,7 @@ enum c_constants {
     err_invalid_convex_mesh = PQP_ERR_INVALID_CONVEX_MESH,
     err_buffer_too_small = PQP_ERR_BUFFER_TOO_SMALL,
     err_invalid_data = PQP_ERR_INVALID_DATA,
+    err_not_a_triangle_mesh = PQP_ERR_NOT_A_TRIANGLE_MESH,
     all_contacts = PQP_ALL_CONTACTS,
     first_contact = PQP_FIRST_CONTACT
 };
@@ -56,6 +57,7 @@ enum c_constants {
 #undef PQP_ERR_INVALID_CONVEX_MESH
 #undef PQP_ERR_BUFFER_TOO_SMALL
 #undef PQP_ERR_INVALID_DATA
+#undef PQP_ERR_NOT_A_TRIANGLE_MESH
 #undef PQP_ALL_CONTACTS
 #undef PQP_FIRST_CONTACT
 
@@ -75,6 +77,7 @@ const int PQP_ERR_DEGENERATE_POINTS = pqp_detail::err_degenerate_points;
 const int PQP_ERR_INVALID_CONVEX_MESH = pqp_detail::err_invalid_convex_mesh;
 const int PQP_ERR_BUFFER_TOO_SMALL = pqp_detail::err_buffer_too_small;
 const int PQP_ERR_INVALID_DATA = pqp_detail::err_invalid_data;
+const int PQP_ERR_NOT_A_TRIANGLE_MESH = pqp_detail::err_not_a_triangle_mesh;
 
 /* PQP_Collide's flag: every colliding pair, or stop at the first. */
 const int PQP_ALL_CONTACTS = pqp_detail::all_contacts;

@@ -55,6 +55,7 @@ pub struct pqp_contact_time {
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
 ///         tolerance is not above 0 (or NaN), or a rotation is not one to within 1e-6 (a
 ///         reflection included); PQP_ERR_UNPROCESSED_MODEL if a model is not built;
+///         PQP_ERR_NOT_A_TRIANGLE_MESH if a model holds a primitive (pqp_model_set_sphere, ...);
 ///         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
 ///         magnitude; PQP_ERR_INTERNAL on an internal fault. On any error out is left unchanged.
 /// Thread safety: any number of queries may use the same models at once from different threads.

@@ -396,6 +396,7 @@ pub unsafe extern "C" fn pqp_model_tris(
 /// @param num_bvs  receives the number of volumes (0 on any error).
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
 ///         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+///         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
 ///         PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m (threads asking at once
 ///                all get the same array), not with build calls on m.

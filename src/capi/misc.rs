@@ -4,8 +4,8 @@ use super::{
     PQP_ERR_BUFFER_TOO_SMALL, PQP_ERR_BUILD_EMPTY_MODEL, PQP_ERR_BUILD_OUT_OF_SEQUENCE,
     PQP_ERR_DEGENERATE_POINTS, PQP_ERR_INTERNAL, PQP_ERR_INVALID_ARGUMENT,
     PQP_ERR_INVALID_CONVEX_MESH, PQP_ERR_INVALID_DATA, PQP_ERR_MODEL_OUT_OF_MEMORY,
-    PQP_ERR_NONFINITE_COORDINATE, PQP_ERR_NONFINITE_POSE, PQP_ERR_NULL_POINTER,
-    PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL, PQP_OK, boundary,
+    PQP_ERR_NONFINITE_COORDINATE, PQP_ERR_NONFINITE_POSE, PQP_ERR_NOT_A_TRIANGLE_MESH,
+    PQP_ERR_NULL_POINTER, PQP_ERR_OUT_OF_MEMORY, PQP_ERR_UNPROCESSED_MODEL, PQP_OK, boundary,
 };
 use std::ffi::{c_char, c_int};
 
@@ -30,6 +30,7 @@ fn error_text(code: c_int) -> &'static std::ffi::CStr {
         PQP_ERR_INVALID_CONVEX_MESH => c"mesh is not a closed convex polyhedron",
         PQP_ERR_BUFFER_TOO_SMALL => c"buffer missing or too small (the needed size was reported)",
         PQP_ERR_INVALID_DATA => c"data is not a valid saved model",
+        PQP_ERR_NOT_A_TRIANGLE_MESH => c"model is a primitive, not a triangle mesh",
         _ => c"unknown error code",
     }
 }
@@ -83,6 +84,7 @@ mod tests {
             Error::InvalidConvexMesh,
             Error::BufferTooSmall,
             Error::InvalidData,
+            Error::NotATriangleMesh,
         ];
         let constants = [
             PQP_ERR_MODEL_OUT_OF_MEMORY,
@@ -99,6 +101,7 @@ mod tests {
             PQP_ERR_INVALID_CONVEX_MESH,
             PQP_ERR_BUFFER_TOO_SMALL,
             PQP_ERR_INVALID_DATA,
+            PQP_ERR_NOT_A_TRIANGLE_MESH,
         ];
         for (e, c) in all.iter().zip(constants) {
             assert_eq!(e.code(), c);
@@ -106,7 +109,7 @@ mod tests {
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), e.message());
         }
-        for c in [1, 2, -15, i32::MIN, i32::MAX] {
+        for c in [1, 2, -16, i32::MIN, i32::MAX] {
             // SAFETY: pqp_error_string returns a static NUL-terminated string for any code.
             let text = unsafe { CStr::from_ptr(pqp_error_string(c)) };
             assert_eq!(text.to_str().unwrap(), "unknown error code");

@@ -56,6 +56,8 @@ mod geometry;
 mod misc;
 // Saved models: serialize and deserialize.
 mod saved;
+// Swept-sphere primitives as models: sphere, capsule, box.
+mod primitive;
 
 pub use batch::*;
 pub use collide::*;
@@ -67,6 +69,7 @@ pub use legacy::*;
 pub use misc::*;
 pub use model::*;
 pub use point::*;
+pub use primitive::*;
 pub use ray::*;
 pub use refit::*;
 pub use saved::*;
@@ -122,6 +125,10 @@ pub const PQP_ERR_BUFFER_TOO_SMALL: c_int = -13;
 /// Bytes given as a saved model are not one (pqp_model_deserialize): wrong magic or version,
 /// truncated, checksum mismatch, or contents that do not make a valid model.
 pub const PQP_ERR_INVALID_DATA: c_int = -14;
+/// The model holds a primitive (pqp_model_set_sphere, pqp_model_set_capsule, pqp_model_set_box)
+/// and the call needs triangles or a hierarchy: closest point, signed distance, rays,
+/// self-collision, time of contact, refit, serialize, PQP 1.3's volume view (pqp_model_bvs).
+pub const PQP_ERR_NOT_A_TRIANGLE_MESH: c_int = -15;
 /// Collision flag: report every colliding triangle pair.
 pub const PQP_ALL_CONTACTS: c_int = 1;
 /// Collision flag: stop at the first colliding triangle pair found.

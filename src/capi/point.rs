@@ -60,7 +60,9 @@ unsafe fn point_args<'a>(
 /// @param max_distance  the largest distance of interest, >= 0; INFINITY for no limit. Smaller
 ///                      values make the search faster.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
-///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+///         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+///         (pqp_model_set_sphere, ...);
+///         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
 ///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
 ///         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
 ///         internal fault. On an error nothing is written. out may overlap the inputs.
@@ -112,7 +114,9 @@ pub unsafe extern "C" fn pqp_closest_point(
 /// @param m      the model (built).
 /// @param point  the point, 3 doubles, world coordinates.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
-///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
+///         not built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+///         (pqp_model_set_sphere, ...);
+///         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
 ///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
 ///         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
 ///         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap

@@ -74,7 +74,9 @@ const NO_HIT: pqp_ray_hit = pqp_ray_hit {
 /// @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
 /// @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
 ///         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
-///         built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+///         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+///         (pqp_model_set_sphere, ...);
+///         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
 ///         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
 ///         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
 ///         1e150 in magnitude, or a direction coordinate is NaN or infinite; PQP_ERR_INTERNAL on an

@@ -28,6 +28,7 @@ use crate::error::Error;
 /// @param num_tris   the number of triangles; must be the model's (pqp_model_num_tris).
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if m or triangles is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
 ///         not built; PQP_ERR_INVALID_ARGUMENT if num_tris is not the model's count;
+///         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
 ///         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
 ///         magnitude; PQP_ERR_MODEL_OUT_OF_MEMORY if the new arrays could not be allocated;
 ///         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.

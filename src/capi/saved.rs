@@ -23,6 +23,7 @@ use std::ffi::{c_int, c_void};
 /// @param size      receives the number of bytes written, or needed.
 /// @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
 ///         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
+///         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
 ///         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
 ///         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may run concurrently with queries and other getters on m (a built model may be

@@ -32,7 +32,8 @@ use std::ffi::c_int;
 /// @param flag  PQP_ALL_CONTACTS to find every pair, PQP_FIRST_CONTACT to stop at the first found.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if r or m is NULL; PQP_ERR_INVALID_ARGUMENT if flag is
 ///         neither PQP_ALL_CONTACTS nor PQP_FIRST_CONTACT; PQP_ERR_UNPROCESSED_MODEL if m is not
-///         built; PQP_ERR_OUT_OF_MEMORY if the search's boxes (24 bytes per triangle and per
+///         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere,
+///         ...); PQP_ERR_OUT_OF_MEMORY if the search's boxes (24 bytes per triangle and per
 ///         inner node, for the duration of the call) cannot be allocated; PQP_ERR_INTERNAL on an
 ///         internal fault (r is then reset to its freshly created state). On any other error r is
 ///         left unchanged.

@@ -76,6 +76,7 @@ impl Model {
             bvh: Some(bvh),
             uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
             volume,
+            primitive: None,
         })
     }
 }

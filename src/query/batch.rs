@@ -201,8 +201,8 @@ pub(crate) fn tolerance_batch_with(
 /// What every query checks after its own arguments: both models built, then each pose, pair by
 /// pair (the first failing pose pair decides the code, as its single query would).
 fn check_poses(m1: &Model, m2: &Model, poses: &[(Pose, Pose)]) -> Result<(), Error> {
-    m1.bvh()?;
-    m2.bvh()?;
+    m1.check_built()?;
+    m2.check_built()?;
     poses.iter().try_for_each(|(p1, p2)| {
         p1.validate()?;
         p2.validate()

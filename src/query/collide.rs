@@ -61,6 +61,17 @@ impl CollideResult {
     pub(super) fn pairs_mut(&mut self) -> &mut Vec<ContactPair> {
         &mut self.pairs
     }
+    /// Sets the pairs (ids) and the work of a query on a primitive (`query/primitive.rs`).
+    pub(super) fn set_pairs(
+        &mut self,
+        (pairs, stats): super::primitive::Pairs,
+    ) -> Result<(), Error> {
+        self.pairs.clear();
+        self.pairs
+            .extend(pairs.into_iter().map(|(id1, id2)| ContactPair { id1, id2 }));
+        self.stats = stats;
+        Ok(())
+    }
     /// Releases the pair list's memory (PQP's `FreePairsList`).
     pub fn free_pairs(&mut self) {
         self.pairs = Vec::new();
@@ -103,6 +114,10 @@ pub fn collide_into(
     mode: ContactMode,
 ) -> Result<(), Error> {
     let start = Instant::now();
+    let first = mode == ContactMode::First;
+    if let Some(found) = super::primitive::pairs(m1, pose1, m2, pose2, 0.0, first) {
+        return result.set_pairs(found?);
+    }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     result.pairs.clear();
     // Two triangles: test them at once (their volumes, computed from them, would cost about as

@@ -1,6 +1,7 @@
 //! Separation distance, exact or within a relative/absolute error, with closest points.
 
 use super::front::{Front, FrontQuery};
+use super::primitive::{Goal, Nearest};
 use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
 use super::{Stats, TriCache, prepare};
 use crate::error::Error;
@@ -155,6 +156,20 @@ pub fn distance_into(
 ) -> Result<(), Error> {
     let start = Instant::now();
     options.validate()?;
+    // A primitive: its own search, without the triangle cache or the front.
+    let goal = Goal::Distance {
+        rel_err: options.rel_err,
+        abs_err: options.abs_err,
+    };
+    if let Some(found) = super::primitive::nearest(m1, pose1, m2, pose2, goal) {
+        let Nearest { best, stats, .. } = found?;
+        let best = best.ok_or(Error::Internal)?;
+        (result.distance, result.p1, result.p2) = (best.distance, best.p1, best.p2);
+        result.overlap = best.distance <= 0.0;
+        ((result.id1, result.id2), (result.tri1, result.tri2)) = (best.ids, best.tris);
+        (result.cache, result.front, result.stats) = (None, Front::default(), stats);
+        return Ok(());
+    }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let (rel_err, abs_err) = (options.rel_err, options.abs_err);
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);

@@ -15,6 +15,7 @@ mod front;
 #[cfg(test)]
 mod layering_tests;
 mod point;
+mod primitive;
 mod queue;
 mod ray;
 pub(crate) mod search;

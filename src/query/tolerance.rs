@@ -1,5 +1,6 @@
 //! Tolerance: are two posed models within distance `t` of each other?
 
+use super::primitive::{Goal, Nearest};
 use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
 use super::{Stats, TriCache, prepare};
 use crate::error::Error;
@@ -108,6 +109,27 @@ pub fn tolerance_into(
         return Err(Error::InvalidArgument);
     }
     search.validate()?;
+    // A primitive: its own search, without the triangle cache.
+    let goal = Goal::Tolerance(tolerance);
+    if let Some(found) = super::primitive::nearest(m1, pose1, m2, pose2, goal) {
+        let Nearest {
+            best,
+            pruned,
+            stats,
+        } = found?;
+        let within = best.filter(|b| b.distance <= tolerance);
+        result.closer_than_tolerance = within.is_some();
+        result.distance = match within {
+            Some(b) => b.distance,
+            None => best.map_or(pruned, |b| b.distance.min(pruned)),
+        };
+        let zero = Vec3::zeros();
+        (result.p1, result.p2) = within.map_or((zero, zero), |b| (b.p1, b.p2));
+        let (ids, tris) = within.map_or(((-1, -1), (-1, -1)), |b| (b.ids, b.tris));
+        ((result.id1, result.id2), (result.tri1, result.tri2)) = (ids, tris);
+        (result.tolerance, result.cache, result.stats) = (tolerance, None, stats);
+        return Ok(());
+    }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, search);
     let options = search;

@@ -56,6 +56,9 @@ pub fn within_distance_into(
     if tolerance.is_nan() || tolerance < 0.0 {
         return Err(Error::InvalidArgument);
     }
+    if let Some(found) = super::primitive::pairs(m1, pose1, m2, pose2, tolerance, false) {
+        return result.set_pairs(found?);
+    }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     // Bounds from `distance_below` are exact below the cutoff and at least it otherwise: with a
     // cutoff just above the tolerance, a node pair is pruned exactly when its bound exceeds it.
