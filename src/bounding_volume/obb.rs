@@ -1,7 +1,7 @@
 use super::ssv_fit::REFIT_SLACK;
 use super::{BoundingVolume, OverlapVolume};
 use crate::geometry::Tri;
-use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, least, most};
 
 /// Oriented bounding box.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -153,6 +153,11 @@ impl OverlapVolume for Obb {
 
     /// Separating axis test on the 15 candidate axes: the 3 face normals of each box and the 9 cross
     /// products of an edge of each. Every test allows a rounding slack, so touching boxes overlap.
+    ///
+    /// Most boxes a search tests overlap (about 60% on the bunny), so every axis is usually
+    /// evaluated: the axes go in three groups (a's faces, b's faces, the edge pairs), each
+    /// evaluated whole and decided by one branch, with no branch per axis; the arithmetic of a
+    /// group is straight-line and vectorizes.
     #[inline]
     fn overlap_posed(a: &Self, b: &PosedObb, _rel: &RelPose) -> bool {
         let (ha, hb) = (&a.half, &b.half);
@@ -160,95 +165,104 @@ impl OverlapVolume for Obb {
         // the centre posed in a's model frame once, for all the boxes b is tested against).
         let d = b.center - a.center;
         let slack = OVERLAP_SLACK * (abs_sum(&a.center) + ha.sum() + b.magnitude) + UNDERFLOW_SLACK;
-
-        // a's face normals, one row of R at a time: most separated pairs go at the first.
-        let mut t = Vec3::zeros();
-        let mut r = Mat3::zeros();
-        let mut ar = Mat3::zeros();
+        let (axes, baxes) = (&a.axes, &b.axes);
+        // Row i of R (a's axis i against b's axes), its absolute values, and t[i].
+        let row = |i: usize| {
+            let c = axes.column(i);
+            [
+                c.dot(&baxes.column(0)),
+                c.dot(&baxes.column(1)),
+                c.dot(&baxes.column(2)),
+            ]
+        };
+        let r = [row(0), row(1), row(2)];
+        let ar = r.map(|x| x.map(f64::abs));
+        let t = [
+            axes.column(0).dot(&d),
+            axes.column(1).dot(&d),
+            axes.column(2).dot(&d),
+        ];
+        let (ha, hb) = ([ha.x, ha.y, ha.z], [hb.x, hb.y, hb.z]);
+        // a's face normals.
+        let mut apart = false;
         for i in 0..3 {
-            let axis = a.axes.column(i);
-            t[i] = axis.dot(&d);
-            let row = axis.transpose() * b.axes;
-            let arow = row.abs();
-            if t[i].abs() > ha[i] + arow.dot(&hb.transpose()) + slack {
-                return false;
-            }
-            r.set_row(i, &row);
-            ar.set_row(i, &arow);
+            let rb = ar[i][0] * hb[0] + ar[i][1] * hb[1] + ar[i][2] * hb[2];
+            apart |= t[i].abs() > ha[i] + rb + slack;
+        }
+        if apart {
+            return false;
         }
         // b's face normals.
         for j in 0..3 {
-            let proj = r.column(j).dot(&t);
-            if proj.abs() > ar.column(j).dot(ha) + hb[j] + slack {
-                return false;
-            }
+            let proj = r[0][j] * t[0] + r[1][j] * t[1] + r[2][j] * t[2];
+            let ra = ar[0][j] * ha[0] + ar[1][j] * ha[1] + ar[2][j] * ha[2];
+            apart |= proj.abs() > ra + hb[j] + slack;
+        }
+        if apart {
+            return false;
         }
         // Edge pairs: axis a_i x b_j. In a's frame its components are e_i x R.col(j); its products
         // with b's axes are +-R[i][j'], with a's +-R[i'][j].
         const NEXT: [(usize, usize); 3] = [(1, 2), (2, 0), (0, 1)];
         for (i, &(i1, i2)) in NEXT.iter().enumerate() {
             for (j, &(j1, j2)) in NEXT.iter().enumerate() {
-                let proj = t[i2] * r[(i1, j)] - t[i1] * r[(i2, j)];
-                let ra = ha[i1] * ar[(i2, j)] + ha[i2] * ar[(i1, j)];
-                let rb = hb[j1] * ar[(i, j2)] + hb[j2] * ar[(i, j1)];
-                if proj.abs() > ra + rb + slack {
-                    return false;
-                }
+                let proj = t[i2] * r[i1][j] - t[i1] * r[i2][j];
+                let ra = ha[i1] * ar[i2][j] + ha[i2] * ar[i1][j];
+                let rb = hb[j1] * ar[i][j2] + hb[j2] * ar[i][j1];
+                apart |= proj.abs() > ra + rb + slack;
             }
         }
-        true
+        !apart
     }
 
     /// Separating axis test of a box and a triangle on the 13 candidate axes: the box's 3 face
     /// normals, the triangle's normal, and the 9 cross products of a box axis and a triangle edge.
     /// Each test allows a rounding slack in proportion to the axis, so touching counts as overlap.
+    /// As in the box-box test, the axes go in groups decided by one branch each.
     #[inline]
     fn overlap_triangle(a: &Self, t: &Tri) -> Option<bool> {
         let h = &a.half;
         let v = [a.local(&t[0]), a.local(&t[1]), a.local(&t[2])];
         let scale = abs_sum(&a.center) + abs_sum(&t[0]) + abs_sum(&t[1]) + abs_sum(&t[2]) + h.sum();
         let slack = OVERLAP_SLACK * scale + UNDERFLOW_SLACK;
-        // Whether the triangle's projection on `axis` (box coordinates) misses the box's.
-        let apart = |axis: &Vec3| {
-            let (p0, p1, p2) = (axis.dot(&v[0]), axis.dot(&v[1]), axis.dot(&v[2]));
-            let lo = p0.min(p1).min(p2);
-            let hi = p0.max(p1).max(p2);
-            let r = h.dot(&axis.abs());
-            let s = slack * abs_sum(axis);
-            lo > r + s || hi < -r - s
+        // Whether the projections `p` of the triangle's vertices on an axis miss the box's,
+        // `[-r, r]`, by more than `s`. (Coordinates are finite: plain selects for min and max.)
+        let misses = |p: [f64; 3], r: f64, s: f64| {
+            let lo = least(least(p[0], p[1]), p[2]);
+            let hi = most(most(p[0], p[1]), p[2]);
+            (lo > r + s) | (hi < -r - s)
         };
+        let mut apart = false;
         for i in 0..3 {
-            let lo = v[0][i].min(v[1][i]).min(v[2][i]);
-            let hi = v[0][i].max(v[1][i]).max(v[2][i]);
-            if lo > h[i] + slack || hi < -h[i] - slack {
-                return Some(false);
-            }
+            apart |= misses([v[0][i], v[1][i], v[2][i]], h[i], slack);
         }
-        let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
-        if apart(&e[0].cross(&e[1])) {
+        if apart {
             return Some(false);
         }
-        // `apart` for an axis with components `x` at index `j` and `y` at index `k > j`, 0 at the
-        // third: the products with the 0 left out (a float product with 0 is not folded away by
-        // the compiler), which changes no value.
+        let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
+        let n = e[0].cross(&e[1]);
+        let p = [n.dot(&v[0]), n.dot(&v[1]), n.dot(&v[2])];
+        if misses(p, h.dot(&n.abs()), slack * abs_sum(&n)) {
+            return Some(false);
+        }
+        // An axis with components `x` at index `j` and `y` at index `k > j`, 0 at the third: the
+        // products with the 0 left out (a float product with 0 is not folded away by the
+        // compiler), which changes no value.
         let apart2 = |j: usize, x: f64, k: usize, y: f64| {
             let p = |w: &Vec3| w[j] * x + w[k] * y;
-            let (p0, p1, p2) = (p(&v[0]), p(&v[1]), p(&v[2]));
-            let lo = p0.min(p1).min(p2);
-            let hi = p0.max(p1).max(p2);
             let r = h[j] * x.abs() + h[k] * y.abs();
-            let s = slack * (x.abs() + y.abs());
-            lo > r + s || hi < -r - s
+            misses(
+                [p(&v[0]), p(&v[1]), p(&v[2])],
+                r,
+                slack * (x.abs() + y.abs()),
+            )
         };
         for edge in &e {
             // e_i x edge for the box axes e_i: (0, -z, y), (z, 0, -x), (-y, x, 0).
-            if apart2(1, -edge.z, 2, edge.y)
-                || apart2(0, edge.z, 2, -edge.x)
-                || apart2(0, -edge.y, 1, edge.x)
-            {
-                return Some(false);
-            }
+            apart |= apart2(1, -edge.z, 2, edge.y)
+                | apart2(0, edge.z, 2, -edge.x)
+                | apart2(0, -edge.y, 1, edge.x);
         }
-        Some(true)
+        Some(!apart)
     }
 }

@@ -7,6 +7,7 @@ use super::{Stats, TriCache, prepare};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
+use std::mem::MaybeUninit;
 use std::time::Instant;
 
 /// How a distance query may trade accuracy for speed, and how it searches.
@@ -173,8 +174,9 @@ pub fn distance_into(
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let (rel_err, abs_err) = (options.rel_err, options.abs_err);
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
-    let mut leaves = LeafVolumes::default();
-    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
+    let mut leaves = MaybeUninit::uninit();
+    let leaves = LeafVolumes::init(&mut leaves);
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, leaves);
     let asked = FrontQuery {
         m1,
         m2,

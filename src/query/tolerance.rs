@@ -6,6 +6,7 @@ use super::{Stats, TriCache, prepare};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
+use std::mem::MaybeUninit;
 use std::time::Instant;
 
 /// The answer of a tolerance query.
@@ -133,8 +134,9 @@ pub fn tolerance_into(
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, search);
     let options = search;
-    let mut leaves = LeafVolumes::default();
-    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, &mut leaves);
+    let mut leaves = MaybeUninit::uninit();
+    let leaves = LeafVolumes::init(&mut leaves);
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, leaves);
     // -0 is 0 (its bits would make the cutoff below negative). An infinite tolerance takes in
     // every pair: the search still goes down to one triangle pair, whose distance it reports.
     let limit = if tolerance == 0.0 {

@@ -9,7 +9,8 @@ use crate::math::{RelPose, Vec3};
 use crate::query::traversal::{LeafCache, NodePair};
 use std::mem::MaybeUninit;
 
-/// Recently met leaves' volumes of each model (see [`LeafCache`]).
+/// Recently met leaves' volumes of each model (see [`LeafCache`]). Made in place by
+/// [`LeafVolumes::init`], on the query's stack.
 #[derive(Default)]
 pub(crate) struct LeafVolumes {
     first: LeafCache<CompactSsv>,
@@ -17,6 +18,23 @@ pub(crate) struct LeafVolumes {
     /// Volumes recently posed by [`expand`]: a node stays the fixed side of several expansions
     /// close together, so a posed volume is often asked for again soon.
     posed: PosedVolumes,
+}
+
+impl LeafVolumes {
+    /// Empty caches in `slot`, made in place (only their keys are written: moving a value made
+    /// elsewhere would copy every slot, about 21 KB).
+    #[inline(always)]
+    pub(crate) fn init(slot: &mut MaybeUninit<LeafVolumes>) -> &mut LeafVolumes {
+        let p = slot.as_mut_ptr();
+        // SAFETY: `p` is valid and aligned (from `slot`); each field's keys are written and every
+        // other field is `MaybeUninit`, so the whole value is then initialised.
+        unsafe {
+            LeafCache::init_at(&raw mut (*p).first);
+            LeafCache::init_at(&raw mut (*p).second);
+            (&raw mut (*p).posed.keys).write([0; POSED_SLOTS]);
+            slot.assume_init_mut()
+        }
+    }
 }
 
 /// Slots of [`PosedVolumes`].
