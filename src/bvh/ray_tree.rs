@@ -7,20 +7,23 @@
 //! a node, each coordinate an array of four (structure of arrays, so the four slab tests run as
 //! vector operations), and the node is one aligned 128-byte block.
 //!
-//! The tree is the main hierarchy collapsed: a node's four children are its binary descendants
-//! reached by opening the largest (by surface area) until there are four, and a subtree of at
-//! most [`LEAF_MAX`] triangles is a leaf, a run of consecutive triangle slots (a subtree's
-//! triangles are contiguous in leaf order). Coordinates are stored in single precision, each
-//! rounded outwards, so a stored box holds the exact one.
+//! The tree is built for rays, on the triangles' boxes: top-down, each split the one of least
+//! surface area cost (the expected number of triangle tests of a random ray, each side's box area
+//! times its triangles) among 16 bins of centroids per axis, down to leaves of at most
+//! [`LEAF_MAX`] triangles (median splits past [`SAH_DEPTH`] levels bound the depth); then the
+//! binary tree is collapsed, a node's four children being its descendants reached by opening the
+//! largest (by surface area) until there are four. A leaf is a run of the tree's own triangle
+//! order (slots of the main hierarchy's leaf order). Coordinates are stored in single precision,
+//! each rounded outwards, so a stored box holds the exact one.
 //!
 //! Built on first use (see [`Bvh::ray_tree`]): a model that never casts a ray pays nothing for it.
 
-use super::{Bvh, NodeKind, NodeRef, try_copy};
+use super::{Bvh, MAX_DEPTH, try_copy};
 use crate::error::Error;
 use crate::math::Vec3;
 
 /// The most triangles a leaf holds.
-pub(crate) const LEAF_MAX: usize = 1;
+pub(crate) const LEAF_MAX: usize = 2;
 
 /// Children per node.
 const WIDTH: usize = 4;
@@ -173,85 +176,126 @@ impl<T: Lane> Slab<T> {
 pub(crate) struct RayTree {
     /// The nodes, the root first.
     nodes: Vec<WideNode>,
+    /// The triangles' slots (leaf order of the main hierarchy) in this tree's leaf order: a leaf
+    /// holds a run of it.
+    order: Vec<u32>,
     /// The largest coordinate magnitude of the vertices.
     extent: f64,
 }
 
-/// Per node of the binary hierarchy: what the collapse needs.
+/// A node of the binary tree the build makes before collapsing it: its box, and its children
+/// (indices in the build's array) or, for a leaf (`kids[0] == LEAF`), its run of `order`.
 #[derive(Clone, Copy)]
-struct Summary {
+struct Binary {
     lo: Vec3,
     hi: Vec3,
+    kids: [u32; 2],
     first: u32,
     count: u32,
 }
 
-impl Summary {
+impl Binary {
     fn area(&self) -> f64 {
         let e = self.hi - self.lo;
         e.x * e.y + e.y * e.z + e.z * e.x
     }
 }
 
+/// The `kids` of a binary leaf.
+const LEAF: u32 = u32::MAX;
+
+/// Bins of the surface area heuristic's split search, per axis.
+const BINS: usize = 16;
+
+/// Levels split by the surface area heuristic; below, splits at the median (so the depth stays
+/// below [`MAX_DEPTH`], which the traversal's stack assumes, whatever the input).
+const SAH_DEPTH: usize = MAX_DEPTH - 33;
+
+/// A triangle's box and centroid, for the build.
+#[derive(Clone, Copy)]
+struct Prim {
+    lo: Vec3,
+    hi: Vec3,
+    c: Vec3,
+}
+
+/// The box of `prims` over `order`.
+fn bounds(prims: &[Prim], order: &[u32]) -> (Vec3, Vec3) {
+    let mut lo = Vec3::repeat(f64::INFINITY);
+    let mut hi = Vec3::repeat(f64::NEG_INFINITY);
+    for &i in order {
+        let p = &prims[i as usize];
+        lo = lo.inf(&p.lo);
+        hi = hi.sup(&p.hi);
+    }
+    (lo, hi)
+}
+
+/// Surface area (halved) of a box, 0 for an empty one.
+fn half_area(lo: &Vec3, hi: &Vec3) -> f64 {
+    let e = (hi - lo).map(|x| x.max(0.0));
+    e.x * e.y + e.y * e.z + e.z * e.x
+}
+
 impl RayTree {
     /// The tree of `bvh` (built, at least one triangle), or `Err(OutOfMemory)`.
     pub fn build(bvh: &Bvh) -> Result<RayTree, Error> {
         let oom = |_| Error::OutOfMemory;
-        let inner = bvh.nodes.len();
-        let mut sums: Vec<Summary> = Vec::new();
-        sums.try_reserve_exact(inner).map_err(oom)?;
-        sums.resize(
-            inner,
-            Summary {
-                lo: Vec3::zeros(),
-                hi: Vec3::zeros(),
-                first: 0,
-                count: 0,
-            },
-        );
-        let root = bvh.root();
-        let top = summarize(bvh, root, &mut sums);
-        let mut tree = RayTree::default();
-        let slot = |r: NodeRef| match r.kind() {
-            NodeKind::Leaf(t) => leaf_summary(bvh, t),
-            NodeKind::Inner(i) => sums[i],
+        let n = bvh.num_tris();
+        let mut prims: Vec<Prim> = Vec::new();
+        prims.try_reserve_exact(n).map_err(oom)?;
+        prims.extend((0..n).map(|t| {
+            let [a, b, c] = bvh.tri(t);
+            let (lo, hi) = (a.inf(&b).inf(&c), a.sup(&b).sup(&c));
+            Prim {
+                lo,
+                hi,
+                c: (lo + hi) * 0.5,
+            }
+        }));
+        let mut order: Vec<u32> = Vec::new();
+        order.try_reserve_exact(n).map_err(oom)?;
+        order.extend(0..n as u32);
+        let mut bin: Vec<Binary> = Vec::new();
+        bin.try_reserve_exact(2 * n).map_err(oom)?;
+        split(&prims, &mut order, 0, 0, &mut bin);
+        drop(prims);
+        let root = bin[0];
+        let mut tree = RayTree {
+            nodes: Vec::new(),
+            order: Vec::new(),
+            extent: root.lo.amax().max(root.hi.amax()),
         };
-        if top.count as usize <= LEAF_MAX || root.is_leaf() {
-            let mut n = EMPTY;
-            set(&mut n, 0, &top, top.first, top.count);
+        if root.kids[0] == LEAF {
+            let mut w = EMPTY;
+            set(&mut w, 0, &root, root.first, root.count);
             tree.nodes.try_reserve_exact(1).map_err(oom)?;
-            tree.nodes.push(n);
+            tree.nodes.push(w);
         } else {
-            tree.collapse(bvh, root, &slot)?;
+            tree.collapse(&bin, 0)?;
         }
-        drop(sums);
+        drop(bin);
         // Grown by doubling: keep what is used.
-        Ok(RayTree {
-            nodes: try_copy(&tree.nodes).map_err(|_| Error::OutOfMemory)?,
-            extent: top.lo.amax().max(top.hi.amax()),
-        })
+        tree.nodes = try_copy(&tree.nodes).map_err(|_| Error::OutOfMemory)?;
+        tree.order = order;
+        Ok(tree)
     }
 
-    /// Appends the node of binary inner node `r` (more than `LEAF_MAX` triangles) and its
-    /// subtree; returns its index.
-    fn collapse(
-        &mut self,
-        bvh: &Bvh,
-        r: NodeRef,
-        slot: &impl Fn(NodeRef) -> Summary,
-    ) -> Result<u32, Error> {
-        let mut kids: [NodeRef; WIDTH] = [NodeRef::default(); WIDTH];
-        let [a, b] = bvh.children(r);
-        kids[0] = a;
-        kids[1] = b;
+    /// Appends the node of binary inner node `r` and its subtree; returns its index.
+    fn collapse(&mut self, bin: &[Binary], r: u32) -> Result<u32, Error> {
+        let mut kids = [0u32; WIDTH];
+        kids[..2].copy_from_slice(&bin[r as usize].kids);
         let mut n = 2;
-        // Open the largest child that is not to be a leaf, until there are four.
+        // Open the largest inner child, until there are four.
         while n < WIDTH {
             let open = (0..n)
-                .filter(|&k| !kids[k].is_leaf() && slot(kids[k]).count as usize > LEAF_MAX)
-                .max_by(|&x, &y| slot(kids[x]).area().total_cmp(&slot(kids[y]).area()));
+                .filter(|&k| bin[kids[k] as usize].kids[0] != LEAF)
+                .max_by(|&x, &y| {
+                    let (a, b) = (&bin[kids[x] as usize], &bin[kids[y] as usize]);
+                    a.area().total_cmp(&b.area())
+                });
             let Some(k) = open else { break };
-            let [c0, c1] = bvh.children(kids[k]);
+            let [c0, c1] = bin[kids[k] as usize].kids;
             kids[k] = c0;
             kids[n] = c1;
             n += 1;
@@ -260,20 +304,22 @@ impl RayTree {
         self.nodes.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
         self.nodes.push(EMPTY);
         for (k, &c) in kids[..n].iter().enumerate() {
-            let s = slot(c);
-            let (child, count) = if c.is_leaf() || s.count as usize <= LEAF_MAX {
-                (s.first, s.count)
+            let b = &bin[c as usize];
+            let (child, count) = if b.kids[0] == LEAF {
+                (b.first, b.count)
             } else {
-                (self.collapse(bvh, c, slot)?, 0)
+                (self.collapse(bin, c)?, 0)
             };
-            set(&mut self.nodes[index], k, &s, child, count);
+            set(&mut self.nodes[index], k, b, child, count);
         }
         Ok(index as u32)
     }
 
     /// Bytes held.
     pub fn memory_usage(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<WideNode>() + std::mem::size_of::<RayTree>()
+        self.nodes.capacity() * std::mem::size_of::<WideNode>()
+            + self.order.capacity() * std::mem::size_of::<u32>()
+            + std::mem::size_of::<RayTree>()
     }
 
     /// The root's index.
@@ -326,6 +372,13 @@ impl RayTree {
         out
     }
 
+    /// The slot (leaf order of the main hierarchy) of the triangle at position `j` of this tree's
+    /// order (a leaf's run is `first..first + count`).
+    #[inline(always)]
+    pub fn slot(&self, j: u32) -> usize {
+        self.order[j as usize] as usize
+    }
+
     /// The largest coordinate magnitude of the boxes (finite: the vertices').
     pub fn extent(&self) -> f64 {
         self.extent
@@ -333,7 +386,7 @@ impl RayTree {
 }
 
 /// Stores child `k` of node `n`: `s`'s box rounded outwards to single precision, and its link.
-fn set(n: &mut WideNode, k: usize, s: &Summary, child: u32, count: u32) {
+fn set(n: &mut WideNode, k: usize, s: &Binary, child: u32, count: u32) {
     for j in 0..3 {
         n.lo[j][k] = round_down(s.lo[j]);
         n.hi[j][k] = round_up(s.hi[j]);
@@ -354,33 +407,117 @@ fn round_up(x: f64) -> f32 {
     if f64::from(y) < x { y.next_up() } else { y }
 }
 
-/// Leaf `t`'s summary: its triangle's box and slot.
-fn leaf_summary(bvh: &Bvh, t: usize) -> Summary {
-    let [a, b, c] = bvh.tri(t);
-    Summary {
-        lo: a.inf(&b).inf(&c),
-        hi: a.sup(&b).sup(&c),
-        first: t as u32,
-        count: 1,
+/// Builds the binary subtree of the triangles `order` (a run of the whole order starting at
+/// `first`) at depth `depth`, appending its nodes to `bin` (the subtree's root first); returns
+/// its root's index. Top-down: the binned surface area heuristic over the three axes, then
+/// median splits below [`SAH_DEPTH`] or where every centroid is the same.
+fn split(
+    prims: &[Prim],
+    order: &mut [u32],
+    first: u32,
+    depth: usize,
+    bin: &mut Vec<Binary>,
+) -> u32 {
+    let (lo, hi) = bounds(prims, order);
+    let index = bin.len() as u32;
+    // Within the reserved capacity: a binary tree of n leaves has 2n - 1 nodes.
+    bin.push(Binary {
+        lo,
+        hi,
+        kids: [LEAF, LEAF],
+        first,
+        count: order.len() as u32,
+    });
+    if order.len() <= LEAF_MAX {
+        return index;
     }
-}
-
-/// Node `r`'s summary, recording every inner node's below it in `sums` (by index).
-fn summarize(bvh: &Bvh, r: NodeRef, sums: &mut [Summary]) -> Summary {
-    match r.kind() {
-        NodeKind::Leaf(t) => leaf_summary(bvh, t),
-        NodeKind::Inner(i) => {
-            let [a, b] = bvh.children(r).map(|c| summarize(bvh, c, sums));
-            let s = Summary {
-                lo: a.lo.inf(&b.lo),
-                hi: a.hi.sup(&b.hi),
-                first: a.first.min(b.first),
-                count: a.count + b.count,
+    let (clo, chi) = order.iter().fold(
+        (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)),
+        |(l, h), &i| (l.inf(&prims[i as usize].c), h.sup(&prims[i as usize].c)),
+    );
+    let mut cut = None;
+    if depth < SAH_DEPTH {
+        let mut best = f64::INFINITY;
+        for axis in 0..3 {
+            let (a, b) = (clo[axis], chi[axis]);
+            if b <= a {
+                continue;
+            }
+            let scale = BINS as f64 / (b - a);
+            let which = |i: u32| {
+                let x = (prims[i as usize].c[axis] - a) * scale;
+                (x as usize).min(BINS - 1)
             };
-            sums[i] = s;
-            s
+            let mut count = [0usize; BINS];
+            let mut boxes = [(Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY)); BINS];
+            for &i in order.iter() {
+                let k = which(i);
+                count[k] += 1;
+                let p = &prims[i as usize];
+                boxes[k] = (boxes[k].0.inf(&p.lo), boxes[k].1.sup(&p.hi));
+            }
+            // Right-hand sweeps: the cost of the triangles of bins k.. on the right.
+            let mut right = [0.0f64; BINS];
+            let (mut rl, mut rh, mut rn) = (
+                Vec3::repeat(f64::INFINITY),
+                Vec3::repeat(f64::NEG_INFINITY),
+                0,
+            );
+            for k in (1..BINS).rev() {
+                rl = rl.inf(&boxes[k].0);
+                rh = rh.sup(&boxes[k].1);
+                rn += count[k];
+                right[k] = half_area(&rl, &rh) * rn as f64;
+            }
+            let (mut ll, mut lh, mut ln) = (
+                Vec3::repeat(f64::INFINITY),
+                Vec3::repeat(f64::NEG_INFINITY),
+                0,
+            );
+            for k in 1..BINS {
+                ll = ll.inf(&boxes[k - 1].0);
+                lh = lh.sup(&boxes[k - 1].1);
+                ln += count[k - 1];
+                let cost = half_area(&ll, &lh) * ln as f64 + right[k];
+                if ln > 0 && ln < order.len() && cost < best {
+                    best = cost;
+                    cut = Some((axis, a, scale, k));
+                }
+            }
         }
     }
+    let mid = match cut {
+        Some((axis, a, scale, k)) => {
+            // Partition: bins below k first.
+            let left = |i: &u32| {
+                let x = (prims[*i as usize].c[axis] - a) * scale;
+                (x as usize).min(BINS - 1) < k
+            };
+            let mut m = 0;
+            for j in 0..order.len() {
+                if left(&order[j]) {
+                    order.swap(m, j);
+                    m += 1;
+                }
+            }
+            m
+        }
+        None => {
+            // The median along the centroids' longest extent (any split if they all coincide).
+            let e = chi - clo;
+            let axis = e.iamax();
+            let m = order.len() / 2;
+            order.select_nth_unstable_by(m, |&x, &y| {
+                prims[x as usize].c[axis].total_cmp(&prims[y as usize].c[axis])
+            });
+            m
+        }
+    };
+    let (l, r) = order.split_at_mut(mid);
+    let a = split(prims, l, first, depth + 1, bin);
+    let b = split(prims, r, first + mid as u32, depth + 1, bin);
+    bin[index as usize].kids = [a, b];
+    index
 }
 
 #[cfg(test)]
@@ -415,9 +552,10 @@ mod tests {
                     };
                     match tree.child(i, k) {
                         RayChild::Leaf { first, count } => {
-                            for s in first..first + count {
-                                assert!(inside(s as usize));
-                                seen[s as usize] += 1;
+                            for j in first..first + count {
+                                let s = tree.slot(j);
+                                assert!(inside(s));
+                                seen[s] += 1;
                             }
                         }
                         RayChild::Inner(c) if lo.x <= hi.x => {

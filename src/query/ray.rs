@@ -313,7 +313,8 @@ impl LocalRay {
                     }
                 }
                 RayChild::Leaf { first, count } => {
-                    for slot in first as usize..(first + count) as usize {
+                    for j in first..first + count {
+                        let slot = tree.slot(j);
                         let Some(t) = self.hit(&bvh.tri(slot)) else {
                             continue;
                         };
