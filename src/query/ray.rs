@@ -19,9 +19,11 @@
 //! products), and `t` is their combination of the vertices' `z`: the hit point is a point of the
 //! triangle (to within a few ulps of the coordinates' magnitude, see [`RayHit`]).
 //!
-//! **Search.** Nearest first through the hierarchy: each inner node's box is cut by the ray (slab
-//! test in the box's frame, the box grown by a rounding allowance that covers both the test's
-//! rounding and the hit point's), and nodes whose entry lies beyond the best hit so far are pruned.
+//! **Search.** Nearest first through the model's four-wide tree of axis-aligned boxes
+//! (`bvh/ray_tree.rs`, built on the model's first ray cast or point query): each node's four boxes
+//! are cut by the ray at once (slab test with the reciprocal direction, the boxes grown by a
+//! rounding allowance that covers both the test's rounding and the hit point's), and nodes whose
+//! entry lies beyond the best hit so far are pruned.
 //! Among hits at the same `t`, the triangle added first wins, so the answer does not depend on the
 //! order of the search.
 
@@ -479,7 +481,8 @@ fn upper_scaled(x: f64, k: i32) -> f64 {
 /// NaN, infinite or larger than 1e150, `NonFiniteCoordinate` for an origin coordinate that is NaN,
 /// infinite or larger than 1e150 or a direction coordinate that is NaN or infinite,
 /// `InvalidArgument` for a zero direction or a `max_t` that is negative or NaN (`max_t` may be
-/// infinite).
+/// infinite), `OutOfMemory` if the model's tree of axis-aligned boxes, made on its first ray cast
+/// or point query (and kept in the model), cannot be allocated.
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, ray_cast};
