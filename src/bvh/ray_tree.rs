@@ -376,8 +376,6 @@ impl RayTree {
     /// gap between `p` and the box, less `slack` (which must cover the subtraction's rounding, a
     /// few ulps of `|p| + extent`), squared and summed. NaN for an unused slot (so that no
     /// comparison keeps it).
-    // Lanes indexed side by side (structure of arrays): the loops compile to vector operations.
-    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     pub fn gaps(&self, i: u32, p: &[f64; 3], slack: f64) -> [f64; WIDTH] {
         let n = &self.nodes[i as usize];
