@@ -372,31 +372,6 @@ impl RayTree {
         out
     }
 
-    /// Lower bounds on the squared distance from `p` to each child box of node `i`: per axis the
-    /// gap between `p` and the box, less `slack` (which must cover the subtraction's rounding, a
-    /// few ulps of `|p| + extent`), squared and summed. NaN for an unused slot (so that no
-    /// comparison keeps it).
-    #[inline(always)]
-    pub fn gaps(&self, i: u32, p: &[f64; 3], slack: f64) -> [f64; WIDTH] {
-        let n = &self.nodes[i as usize];
-        let mut d2 = [0.0f64; WIDTH];
-        for j in 0..3 {
-            for k in 0..WIDTH {
-                let below = f64::from(n.lo[j][k]) - p[j];
-                let above = p[j] - f64::from(n.hi[j][k]);
-                let g = if below > above { below } else { above } - slack;
-                let g = if g > 0.0 { g } else { 0.0 };
-                d2[k] += g * g;
-            }
-        }
-        for k in 0..WIDTH {
-            if n.lo[0][k] > n.hi[0][k] {
-                d2[k] = f64::NAN;
-            }
-        }
-        d2
-    }
-
     /// The slot (leaf order of the main hierarchy) of the triangle at position `j` of this tree's
     /// order (a leaf's run is `first..first + count`).
     #[inline(always)]

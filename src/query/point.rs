@@ -5,13 +5,16 @@
 //! taken as orthonormal), and the answer carried back.
 
 use super::prepare_point as prepare;
+use super::queue::RadixQueue;
+use super::traversal::NodePair;
 use super::winding::winding_at;
-use crate::bvh::{Bvh, MAX_DEPTH, RayChild};
+use crate::bounding_volume::Ssv;
+use crate::bvh::{Bvh, NodeKind, NodeRef};
 use crate::error::Error;
 use crate::geometry::point_triangle;
-use crate::math::{Pose, Vec3};
+use crate::math::{Pose, RelPose, Vec3, most};
 use crate::model::Model;
-use std::mem::MaybeUninit;
+use std::cell::RefCell;
 
 /// The answer of [`closest_point`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,7 +60,7 @@ pub fn closest_point(
         return Err(Error::InvalidArgument);
     }
     let (bvh, p) = prepare(model, pose, point)?;
-    Ok(match nearest(bvh, &p, max_distance)? {
+    Ok(match nearest(bvh, &p, max_distance) {
         Some(c) => PointResult {
             distance: c.distance,
             point: pose.transform_point(&c.q),
@@ -92,7 +95,7 @@ pub fn closest_point(
 /// ```
 pub fn signed_distance(model: &Model, pose: &Pose, point: &Vec3) -> Result<f64, Error> {
     let (bvh, p) = prepare(model, pose, point)?;
-    let d = nearest(bvh, &p, f64::INFINITY)?.map_or(f64::INFINITY, |c| c.distance);
+    let d = nearest(bvh, &p, f64::INFINITY).map_or(f64::INFINITY, |c| c.distance);
     if d == 0.0 {
         return Ok(0.0);
     }
@@ -107,82 +110,69 @@ struct Nearest {
     q: Vec3,
 }
 
-/// The nearest triangle to `p` (model frame) within `max_distance`, if any (of equally near
-/// triangles, the first found): a depth-first descent of the model's axis-aligned four-wide tree
-/// ([`Bvh::ray_tree`], built on the model's first ray cast or point query), nearer boxes first,
-/// pruned by the squared distance to each box against the best distance so far
-/// (`max_distance` to start with). `Err(OutOfMemory)` if the tree cannot be built.
-fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Result<Option<Nearest>, Error> {
-    let tree = bvh.ray_tree()?;
-    // The gaps' subtraction rounds by an ulp of the larger operand: far less than this.
-    let slack = 1e-12 * (p.amax() + tree.extent()) + 1e-300;
-    let q = [p.x, p.y, p.z];
+thread_local! {
+    /// The queue of the closest-point search, one per thread and reused from query to query (its
+    /// buckets keep their capacity), so that only a thread's first query allocates.
+    static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
+}
+
+/// The nearest triangle to `p` (model frame) within `max_distance`, if any: the first found at the
+/// least distance by a priority-directed descent, the node of least bound first (of equal bounds,
+/// the last queued), so that no node whose bound exceeds the final distance is opened.
+fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
+    // Every bound below is a distance computed from p and a volume: its rounding is within the
+    // allowance of a bound between volumes of the model's scale and the point's.
+    let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
     let mut best: Option<Nearest> = None;
     let mut cutoff = max_distance;
-    // A box is opened while its bound is within the best distance squared (rounded up a little:
-    // the bound's own rounding is a few ulps).
-    let reach = |c: f64| c * c * (1.0 + 1e-12);
-    let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
-    let mut len = 0;
-    let mut node = RayChild::Inner(tree.root());
-    loop {
-        match node {
-            RayChild::Inner(i) => {
-                let d2 = tree.gaps(i, &q, slack);
-                let limit = reach(cutoff);
-                // The children within reach, farthest first: all but the nearest are stacked.
-                let mut near = [(0usize, 0.0f64); 4];
-                let mut n = 0;
-                for (k, &d) in d2.iter().enumerate() {
-                    if d <= limit {
-                        let mut j = n;
-                        while j > 0 && near[j - 1].1 < d {
-                            near[j] = near[j - 1];
-                            j -= 1;
-                        }
-                        near[j] = (k, d);
-                        n += 1;
-                    }
-                }
-                if n > 0 {
-                    for &(k, d) in &near[..n - 1] {
-                        // Checked indexing: the depth bound keeps it in range.
-                        stack[len] = MaybeUninit::new((tree.child(i, k), d));
-                        len += 1;
-                    }
-                    node = tree.child(i, near[n - 1].0);
-                    continue;
-                }
-            }
-            RayChild::Leaf { first, count } => {
-                for j in first..first + count {
-                    let t = tree.slot(j);
-                    let c = point_triangle(p, &bvh.tri(t));
-                    // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps
-                    // the first of equally near triangles.
-                    if c.distance <= cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance)
-                    {
-                        cutoff = c.distance;
-                        best = Some(Nearest {
-                            slot: t,
-                            distance: c.distance,
-                            q: c.q,
-                        });
-                    }
-                }
-            }
+    let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let c = point_triangle(p, &bvh.tri(t));
+        // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
+        // equally near triangles.
+        if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
+            *cutoff = c.distance;
+            *best = Some(Nearest {
+                slot: t,
+                distance: c.distance,
+                q: c.q,
+            });
         }
-        loop {
-            if len == 0 {
-                return Ok(best);
-            }
-            len -= 1;
-            // SAFETY: the entries below `len` were written above.
-            let (next, d) = unsafe { stack[len].assume_init() };
-            if d <= reach(cutoff) {
-                node = next;
+    };
+    let root = bvh.root();
+    if let NodeKind::Leaf(t) = root.kind() {
+        leaf(t, &mut cutoff, &mut best);
+        return best;
+    }
+    QUEUE.with(|q| {
+        // A query never calls another while it holds the queue, so the borrow cannot fail.
+        let mut queue = q.borrow_mut();
+        queue.clear();
+        queue.push(entry(root, 0.0));
+        while let Some(NodePair { a: r, bound, .. }) = queue.pop() {
+            if bound > cutoff {
                 break;
             }
+            for c in bvh.children(r) {
+                match c.kind() {
+                    NodeKind::Leaf(t) => leaf(t, &mut cutoff, &mut best),
+                    NodeKind::Inner(_) => {
+                        // Raised to the parent's (which bounds the child's triangles too): the
+                        // queue takes no key below the last popped, nor a negative one.
+                        let v = bvh.inner_ssv(c).full();
+                        let b = most(v.core_distance(p) - v.radius - slack, bound);
+                        if b <= cutoff {
+                            queue.push(entry(c, b));
+                        }
+                    }
+                }
+            }
         }
-    }
+    });
+    best
+}
+
+/// A queue entry: node `r` with the lower bound `bound` on its distance.
+#[inline(always)]
+fn entry(r: NodeRef, bound: f64) -> NodePair {
+    NodePair { a: r, b: r, bound }
 }
