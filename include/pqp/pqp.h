@@ -1474,13 +1474,9 @@ int pqp_within_distance(struct pqp_collide_result *r,
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
  *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
- *         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_OUT_OF_MEMORY if
- *         the model's tree of axis-aligned boxes (made on its first point query or ray cast,
- *         kept in the model and counted by pqp_model_memory_usage) could not be allocated;
- *         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
- *         the inputs.
- * Thread safety: any number of queries may use the same model at once from different threads
- *                (the first ones on a model may each make its tree of boxes; one is kept).
+ *         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
+ *         internal fault. On an error nothing is written. out may overlap the inputs.
+ * Thread safety: any number of queries may use the same model at once from different threads.
  */
 int pqp_closest_point(struct pqp_point_result *out,
                       const double *R,
@@ -1511,8 +1507,7 @@ int pqp_closest_point(struct pqp_point_result *out,
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
  *         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
  *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
- *         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges or its tree of axis-aligned boxes
- *         (see pqp_closest_point) could not be allocated;
+ *         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
  *         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
  *         the inputs.
  * Thread safety: any number of queries may use the same model at once from different threads
@@ -1668,7 +1663,7 @@ int pqp_tolerance_batch(int *closer,
  *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
  *         1e150 in magnitude, or a direction coordinate is NaN or infinite;
  *         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes (made on its first ray
- *         cast or point query, kept in the model and counted by pqp_model_memory_usage) could
+ *         cast, kept in the model and counted by pqp_model_memory_usage) could
  *         not be allocated; PQP_ERR_INTERNAL on an internal fault. On any error nothing is
  *         written.
  * Thread safety: any number of calls may use the same model at once from different threads

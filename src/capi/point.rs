@@ -62,13 +62,9 @@ unsafe fn point_args<'a>(
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
 ///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
 ///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
-///         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_OUT_OF_MEMORY if
-///         the model's tree of axis-aligned boxes (made on its first point query or ray cast,
-///         kept in the model and counted by pqp_model_memory_usage) could not be allocated;
-///         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
-///         the inputs.
-/// Thread safety: any number of queries may use the same model at once from different threads
-///                (the first ones on a model may each make its tree of boxes; one is kept).
+///         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
+///         internal fault. On an error nothing is written. out may overlap the inputs.
+/// Thread safety: any number of queries may use the same model at once from different threads.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_closest_point(
     out: *mut pqp_point_result,
@@ -118,8 +114,7 @@ pub unsafe extern "C" fn pqp_closest_point(
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
 ///         not built; PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than
 ///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
-///         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges or its tree of axis-aligned boxes
-///         (see pqp_closest_point) could not be allocated;
+///         PQP_ERR_OUT_OF_MEMORY if the model's boundary edges could not be allocated;
 ///         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
 ///         the inputs.
 /// Thread safety: any number of queries may use the same model at once from different threads

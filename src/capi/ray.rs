@@ -79,7 +79,7 @@ const NO_HIT: pqp_ray_hit = pqp_ray_hit {
 ///         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
 ///         1e150 in magnitude, or a direction coordinate is NaN or infinite;
 ///         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes (made on its first ray
-///         cast or point query, kept in the model and counted by pqp_model_memory_usage) could
+///         cast, kept in the model and counted by pqp_model_memory_usage) could
 ///         not be allocated; PQP_ERR_INTERNAL on an internal fault. On any error nothing is
 ///         written.
 /// Thread safety: any number of calls may use the same model at once from different threads

@@ -34,14 +34,14 @@ pub struct PointResult {
 /// `max_distance` (which may be infinite).
 ///
 /// Exact: the distance is that of the exact point-triangle routine to the nearest triangle, found
-/// by a depth-first descent of the model's four-wide tree of axis-aligned boxes (made on the
-/// model's first point query or ray cast and kept in it), nearer boxes first, pruned by the
-/// distance to each box and by the best distance so far (`max_distance` to start with).
+/// by a priority-directed descent of the hierarchy (the node of least distance bound first),
+/// pruned by the swept sphere volumes' distance bounds and by the best distance so far
+/// (`max_distance` to start with).
 /// Degenerate triangles count as the segment or point they span.
 ///
 /// Errors: `UnprocessedModel` (not built), `NonFinitePose`, `NonFiniteCoordinate` (a coordinate
 /// of `point` NaN, infinite or beyond 1e150 in magnitude), `InvalidArgument` (`max_distance`
-/// negative or NaN), `OutOfMemory` if the tree of boxes cannot be allocated.
+/// negative or NaN).
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, closest_point};
@@ -81,7 +81,7 @@ pub fn closest_point(
 /// wraps the point at least half way round. A point on the surface has distance 0.
 ///
 /// Errors as [`closest_point`], and `OutOfMemory` if the per-node data of the winding number,
-/// computed on the model's first signed distance, or the tree of boxes cannot be allocated.
+/// computed on the model's first signed distance, cannot be allocated.
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, signed_distance};

@@ -20,7 +20,7 @@
 //! triangle (to within a few ulps of the coordinates' magnitude, see [`RayHit`]).
 //!
 //! **Search.** Nearest first through the model's four-wide tree of axis-aligned boxes
-//! (`bvh/ray_tree.rs`, built on the model's first ray cast or point query): each node's four boxes
+//! (`bvh/ray_tree.rs`, built on the model's first ray cast): each node's four boxes
 //! are cut by the ray at once (slab test with the reciprocal direction, the boxes grown by a
 //! rounding allowance that covers both the test's rounding and the hit point's), and nodes whose
 //! entry lies beyond the best hit so far are pruned.
@@ -482,7 +482,7 @@ fn upper_scaled(x: f64, k: i32) -> f64 {
 /// infinite or larger than 1e150 or a direction coordinate that is NaN or infinite,
 /// `InvalidArgument` for a zero direction or a `max_t` that is negative or NaN (`max_t` may be
 /// infinite), `OutOfMemory` if the model's tree of axis-aligned boxes, made on its first ray cast
-/// or point query (and kept in the model), cannot be allocated.
+/// (and kept in the model), cannot be allocated.
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, ray_cast};
