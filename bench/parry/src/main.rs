@@ -23,8 +23,9 @@ use parry3d_f64::query::{
 use parry3d_f64::shape::{Shape, TriMesh, TriMeshFlags};
 use pqp::geometry::tri_distance;
 use pqp::{
-    ContactMode, DistanceOptions, DistanceResult, Model, Pose, Search, Vec3, closest_point,
-    collide, distance, distance_into, ray_cast, signed_distance, tolerance, within_distance,
+    CollideResult, ContactMode, DistanceOptions, DistanceResult, Model, Pose, Search, Vec3,
+    closest_point, collide, distance, distance_into, ray_cast, signed_distance, tolerance,
+    within_distance,
 };
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -107,6 +108,11 @@ fn build_ours(tris: &[Tri]) -> Model {
 /// A parry `TriMesh` with its default flags, from the same triangle soup: three vertices per
 /// triangle, as our model stores them (no vertex sharing to find).
 fn build_parry(tris: &[Tri]) -> TriMesh {
+    build_parry_with(tris, TriMeshFlags::empty())
+}
+
+/// As [`build_parry`], with `flags` (none: parry's defaults).
+fn build_parry_with(tris: &[Tri], flags: TriMeshFlags) -> TriMesh {
     let mut vertices = Vec::with_capacity(3 * tris.len());
     let mut indices = Vec::with_capacity(tris.len());
     for (i, (a, b, c, _)) in tris.iter().enumerate() {
@@ -116,7 +122,7 @@ fn build_parry(tris: &[Tri]) -> TriMesh {
         let k = 3 * i as u32;
         indices.push([k, k + 1, k + 2]);
     }
-    TriMesh::new(vertices, indices).unwrap_or_else(|e| die(&format!("parry: {e:?}")))
+    TriMesh::with_flags(vertices, indices, flags).unwrap_or_else(|e| die(&format!("parry: {e:?}")))
 }
 
 /// Our pose as parry's (a unit quaternion and a translation).
@@ -277,6 +283,41 @@ fn alternate_chunks(n: usize, rounds: usize, fs: &mut [&mut dyn FnMut(usize)]) -
         }
     }
     per_round.into_iter().map(median).collect()
+}
+
+/// A timing of [`alternate`]'s form.
+type Timing = fn(usize, usize, &mut [&mut dyn FnMut(usize)]) -> Vec<f64>;
+
+/// [`alternate`] of two queries whose answers are only kept from being optimised away.
+fn alternate_pair<A, B>(
+    n: usize,
+    rounds: usize,
+    a: impl Fn(usize) -> A,
+    b: impl Fn(usize) -> B,
+) -> Vec<f64> {
+    time_pair(alternate, n, rounds, a, b)
+}
+
+/// Two queries timed by `timing` (their answers only kept from being optimised away).
+fn time_pair<A, B>(
+    timing: Timing,
+    n: usize,
+    rounds: usize,
+    a: impl Fn(usize) -> A,
+    b: impl Fn(usize) -> B,
+) -> Vec<f64> {
+    timing(
+        n,
+        rounds,
+        &mut [
+            &mut |i| {
+                black_box(a(i));
+            },
+            &mut |i| {
+                black_box(b(i));
+            },
+        ],
+    )
 }
 
 /// Queries per timed chunk in [`alternate_chunks`].
@@ -508,19 +549,19 @@ fn run_tolerance(rep: &mut Report, c: &PairCase, workload: &str, tol: f64, round
     } else {
         format!("**{bad} flags differ** (ours: {closer} closer)")
     };
-    let t = alternate(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours_flag(i));
-            },
-            &mut |i| {
-                black_box(parry_flag(i));
-            },
-        ],
-    );
+    let t = alternate_pair(n, rounds, ours_flag, parry_flag);
     rep.add(workload, &format!("tolerance {tol}"), n, &t, "us", answers);
+}
+
+/// The pairs of `r` as sorted id pairs.
+fn sorted_ids(r: &CollideResult) -> Vec<(u32, u32)> {
+    let mut ids: Vec<(u32, u32)> = r
+        .pairs()
+        .iter()
+        .map(|p| (p.id1 as u32, p.id2 as u32))
+        .collect();
+    ids.sort_unstable();
+    ids
 }
 
 /// Every pair within `tol`: ours `within_distance`, parry's pieces ([`parry_within_pairs`]); pair
@@ -531,13 +572,7 @@ fn run_within(rep: &mut Report, c: &PairCase, workload: &str, tol: f64, rounds: 
     let (mut poses_differ, mut total) = (0, 0);
     for i in 0..n {
         let (a, b) = &c.poses[i];
-        let r = within_distance(&c.m1, a, &c.m2, b, tol).unwrap();
-        let mut ours: Vec<(u32, u32)> = r
-            .pairs()
-            .iter()
-            .map(|p| (p.id1 as u32, p.id2 as u32))
-            .collect();
-        ours.sort_unstable();
+        let ours = sorted_ids(&within_distance(&c.m1, a, &c.m2, b, tol).unwrap());
         let (pa, pb) = &c.ppose[i];
         parry_within_pairs(&c.q1, pa, &c.q2, pb, tol, &mut pairs);
         pairs.sort_unstable();
@@ -589,13 +624,7 @@ fn run_collide(rep: &mut Report, c: &PairCase, workload: &str, all: bool, rounds
             (0, 0, 0, 0);
         for i in 0..n {
             let (a, b) = &c.poses[i];
-            let r = collide(&c.m1, a, &c.m2, b, ContactMode::All).unwrap();
-            let mut ours: Vec<(u32, u32)> = r
-                .pairs()
-                .iter()
-                .map(|p| (p.id1 as u32, p.id2 as u32))
-                .collect();
-            ours.sort_unstable();
+            let ours = sorted_ids(&collide(&c.m1, a, &c.m2, b, ContactMode::All).unwrap());
             let (pa, pb) = &c.ppose[i];
             parry_collide_all(&c.q1, pa, &c.q2, pb, &mut pairs);
             pairs.sort_unstable();
@@ -753,30 +782,34 @@ fn workload_shells(rep: &mut Report, o: &Options, n: usize) {
     run_distance(rep, &c, "2 shells", "distance exact", o.rounds, false);
 }
 
-fn workload_bunny(rep: &mut Report, o: &Options) {
+/// Workloads 3 and 4's cases: the bunny against itself and against the torus, at the same poses.
+fn bunny_cases(o: &Options) -> [(&'static str, PairCase); 2] {
     let bunny = load(&o.shared("bunny.tris"));
     let torus = load(&o.shared("torus.tris"));
     let (_, radius) = centre_and_radius(&bunny);
     let n = if o.quick { 100 } else { 1000 };
-    for (name, other) in [("bunny-bunny", &bunny), ("bunny-torus", &torus)] {
-        let c = PairCase::new(&bunny, other, bunny_poses(&bunny, other, radius, n));
-        run_collide(rep, &c, &format!("3 {name}"), true, o.rounds);
-        run_collide(rep, &c, &format!("3 {name}"), false, o.rounds);
-        run_distance(rep, &c, &format!("4 {name}"), "distance", o.rounds, false);
-        run_tolerance(rep, &c, &format!("4 {name}"), 0.05, o.rounds);
+    [("bunny-bunny", &bunny), ("bunny-torus", &torus)].map(|(name, other)| {
+        (
+            name,
+            PairCase::new(&bunny, other, bunny_poses(&bunny, other, radius, n)),
+        )
+    })
+}
+
+fn workload_bunny(rep: &mut Report, o: &Options) {
+    for (name, c) in &bunny_cases(o) {
+        run_collide(rep, c, &format!("3 {name}"), true, o.rounds);
+        run_collide(rep, c, &format!("3 {name}"), false, o.rounds);
+        run_distance(rep, c, &format!("4 {name}"), "distance", o.rounds, false);
+        run_tolerance(rep, c, &format!("4 {name}"), 0.05, o.rounds);
     }
 }
 
 /// Every pair within a distance, on workload 4's poses.
 fn workload_within(rep: &mut Report, o: &Options) {
-    let bunny = load(&o.shared("bunny.tris"));
-    let torus = load(&o.shared("torus.tris"));
-    let (_, radius) = centre_and_radius(&bunny);
-    let n = if o.quick { 100 } else { 1000 };
-    for (name, other) in [("bunny-bunny", &bunny), ("bunny-torus", &torus)] {
-        let c = PairCase::new(&bunny, other, bunny_poses(&bunny, other, radius, n));
+    for (name, c) in &bunny_cases(o) {
         for tol in [0.0, 0.01] {
-            run_within(rep, &c, &format!("4 {name}"), tol, o.rounds);
+            run_within(rep, c, &format!("4 {name}"), tol, o.rounds);
         }
     }
 }
@@ -892,18 +925,7 @@ fn workload_points(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds:
     } else {
         format!("**{bad} distances differ by more than 1e-9 relative** (largest {worst:.1e})")
     };
-    let t = alternate(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(theirs(i));
-            },
-        ],
-    );
+    let t = alternate_pair(n, rounds, ours, theirs);
     rep.add(
         &format!("points {name}"),
         &format!("closest point ({} triangles)", tris.len()),
@@ -915,7 +937,10 @@ fn workload_points(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds:
     // Signed distance: ours by the winding number; parry's projection on a mesh with its
     // pseudo-normals (`ORIENTED`, vertices merged so that it has a topology), inside when its
     // projection says so.
-    let oriented = build_parry_oriented(tris);
+    let oriented = build_parry_with(
+        tris,
+        TriMeshFlags::MERGE_DUPLICATE_VERTICES | TriMeshFlags::ORIENTED,
+    );
     let ours_signed = |i: usize| {
         let (p, x) = &queries[i];
         signed_distance(&ours_m, p, x).unwrap()
@@ -944,18 +969,7 @@ fn workload_points(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds:
             format!("**{bad} differ** (largest {worst:.1e})")
         }
     );
-    let t = alternate(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours_signed(i));
-            },
-            &mut |i| {
-                black_box(theirs_signed(i));
-            },
-        ],
-    );
+    let t = alternate_pair(n, rounds, ours_signed, theirs_signed);
     rep.add(
         &format!("points {name}"),
         "signed distance (parry: pseudo-normals)",
@@ -964,23 +978,6 @@ fn workload_points(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds:
         "us",
         answers,
     );
-}
-
-/// As [`build_parry`], with the flags parry's signed (solid) point queries need: duplicate
-/// vertices merged and pseudo-normals (`ORIENTED`).
-fn build_parry_oriented(tris: &[Tri]) -> TriMesh {
-    let mut vertices = Vec::with_capacity(3 * tris.len());
-    let mut indices = Vec::with_capacity(tris.len());
-    for (i, (a, b, c, _)) in tris.iter().enumerate() {
-        for p in [a, b, c] {
-            vertices.push(Vector::new(p[0], p[1], p[2]));
-        }
-        let k = 3 * i as u32;
-        indices.push([k, k + 1, k + 2]);
-    }
-    let flags = TriMeshFlags::MERGE_DUPLICATE_VERTICES | TriMeshFlags::ORIENTED;
-    TriMesh::with_flags(vertices, indices, flags)
-        .unwrap_or_else(|e| die(&format!("parry (oriented): {e:?}")))
 }
 
 /// ray_bench's rays: from random points on the sphere of 2.5 model radii around the box centre,
@@ -1043,34 +1040,14 @@ fn workload_rays(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds: u
             "**{differ} rays differ** ({hits} hit by both; largest relative difference of t {worst:.1e})"
         )
     };
-    let t = alternate_chunks(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(theirs(i));
-            },
-        ],
-    );
+    let t = time_pair(alternate_chunks, n, rounds, ours, theirs);
     let query = format!("ray cast, 1 thread ({} triangles)", tris.len());
     rep.add(&format!("rays {name}"), &query, n, &t, "rays/s", answers);
     // Ours answers the point, normal and triangle too: parry's form that adds the normal and
     // the feature hit.
-    let t = alternate_chunks(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(parry_m.cast_ray_and_get_normal(&pid, &prays[i], Real::MAX, false));
-            },
-        ],
-    );
+    let t = time_pair(alternate_chunks, n, rounds, ours, |i| {
+        parry_m.cast_ray_and_get_normal(&pid, &prays[i], Real::MAX, false)
+    });
     let query = "ray cast, parry with normal (`cast_ray_and_get_normal`)";
     rep.add(
         &format!("rays {name}"),
