@@ -615,6 +615,35 @@ mod tests {
         }
     }
 
+    /// A refit drops the ray tree (its boxes are the old vertices'): casts after it see the new
+    /// positions.
+    #[test]
+    fn refit_remakes_the_ray_tree() {
+        let strip = |dx: f64| -> Vec<[[f64; 3]; 3]> {
+            (0..50)
+                .map(|i| {
+                    let x = dx + f64::from(i);
+                    [[x, 0.0, 0.0], [x + 1.0, 0.0, 0.0], [x, 1.0, 0.0]]
+                })
+                .collect()
+        };
+        let mut model = Model::from_triangles(
+            strip(0.0)
+                .iter()
+                .zip(0..)
+                .map(|(t, i)| (t[0], t[1], t[2], i)),
+        )
+        .unwrap();
+        let down = Vec3::new(0.0, 0.0, -1.0);
+        let at = |x: f64| Vec3::new(x, 0.25, 3.0);
+        let hit = |m: &Model, x: f64| ray_cast(m, &Pose::identity(), &at(x), &down, f64::INFINITY);
+        assert_eq!(hit(&model, 10.25).unwrap().unwrap().triangle, 10);
+        model.refit(&strip(100.0)).unwrap();
+        assert_eq!(hit(&model, 10.25).unwrap(), None);
+        let h = hit(&model, 110.25).unwrap().unwrap();
+        assert_eq!((h.triangle, h.t), (10, 3.0));
+    }
+
     #[test]
     fn scaling_helpers() {
         for &x in &[1.0, 3.5e-310, 1e-300, 7e200, f64::MAX] {
