@@ -16,6 +16,7 @@
 mod boundary;
 mod build;
 mod pqp_view;
+mod ray_tree;
 mod refit;
 mod saved;
 mod volume_choice;
@@ -23,6 +24,7 @@ mod volume_choice;
 pub(crate) use boundary::{Boundaries, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
+pub(crate) use ray_tree::{Lane, RayChild, RayTree, Slab, SlabRay};
 pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
@@ -222,6 +224,9 @@ pub(crate) struct Bvh {
     /// Each inner node's boundary edges, for the winding number: computed on first use
     /// ([`Bvh::boundaries`]), so a model that never asks for one does not hold them.
     pub boundary: OnceLock<Boundaries>,
+    /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast
+    /// ([`Bvh::ray_tree`]), so a model that never casts a ray does not hold it.
+    pub ray: OnceLock<RayTree>,
 }
 
 impl Bvh {
@@ -249,6 +254,7 @@ impl Bvh {
             scale,
             tiny,
             boundary: OnceLock::new(),
+            ray: OnceLock::new(),
         }
     }
 
@@ -302,6 +308,7 @@ impl Bvh {
             tiny: self.tiny,
             // Rebuilt on use by the copy if it needs them.
             boundary: OnceLock::new(),
+            ray: OnceLock::new(),
         })
     }
 
@@ -313,6 +320,7 @@ impl Bvh {
             + self.ids.capacity() * std::mem::size_of::<i32>()
             + self.added.capacity() * std::mem::size_of::<u32>()
             + self.boundary.get().map_or(0, Boundaries::memory_usage)
+            + self.ray.get().map_or(0, RayTree::memory_usage)
             + std::mem::size_of::<Bvh>()
     }
 
@@ -325,6 +333,16 @@ impl Bvh {
         }
         let b = Boundaries::build(self)?;
         Ok(self.boundary.get_or_init(|| b))
+    }
+
+    /// The ray-casting layout (see [`RayTree`]), computed on the first call (as
+    /// [`boundaries`](Bvh::boundaries)), or `Err(OutOfMemory)`.
+    pub fn ray_tree(&self) -> Result<&RayTree, Error> {
+        if let Some(t) = self.ray.get() {
+            return Ok(t);
+        }
+        let t = RayTree::build(self)?;
+        Ok(self.ray.get_or_init(|| t))
     }
 
     /// Vertex `i` (an index of [`Boundaries`]' edges).

@@ -43,6 +43,8 @@ impl Bvh {
         // The winding number's boundary edges index the vertices shared at the last build or refit:
         // made again on the next signed distance.
         self.boundary = std::sync::OnceLock::new();
+        // The ray tree's boxes are the old vertices': made again on the next ray cast.
+        self.ray = std::sync::OnceLock::new();
 
         let kind = match volume {
             VolumeKind::Pss => Some(SsvKind::Point),

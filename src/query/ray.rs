@@ -19,20 +19,22 @@
 //! products), and `t` is their combination of the vertices' `z`: the hit point is a point of the
 //! triangle (to within a few ulps of the coordinates' magnitude, see [`RayHit`]).
 //!
-//! **Search.** Nearest first through the hierarchy: each inner node's box is cut by the ray (slab
-//! test in the box's frame, the box grown by a rounding allowance that covers both the test's
-//! rounding and the hit point's), and nodes whose entry lies beyond the best hit so far are pruned.
+//! **Search.** Nearest first through the model's four-wide tree of axis-aligned boxes
+//! (`bvh/ray_tree.rs`, built on the model's first ray cast): each node's four boxes
+//! are cut by the ray at once (slab test with the reciprocal direction, the boxes grown by a
+//! rounding allowance that covers both the test's rounding and the hit point's), and nodes whose
+//! entry lies beyond the best hit so far are pruned.
 //! Among hits at the same `t`, the triangle added first wins, so the answer does not depend on the
 //! order of the search.
 
 use super::batch::{Workers, answer_all};
-use super::traversal::{NodePair, PairStack};
-use crate::bvh::{Bvh, NodeKind, NodeRef};
+use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayChild, RayTree, Slab, SlabRay};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
 use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
+use std::mem::MaybeUninit;
 
 /// The nearest hit of a ray on a posed model.
 ///
@@ -72,6 +74,7 @@ const EDGE_UNDERFLOW: f64 = 1e-300;
 /// Ray casts against one model at one pose: the checked query arguments, shared by every ray.
 pub(crate) struct RayCaster<'a> {
     bvh: &'a Bvh,
+    tree: &'a RayTree,
     pose: Pose,
     max_t: f64,
 }
@@ -89,8 +92,8 @@ struct LocalRay {
     /// The shear that makes the ray the third axis: `x' = x - sx z`, `y' = y - sy z`.
     sx: f64,
     sy: f64,
-    /// How far the boxes are grown: covers the slab test's rounding and how far a hit point may lie
-    /// from its triangle.
+    /// How far the boxes are grown at least: covers the slab test's rounding (in double
+    /// precision) and how far a hit point may lie from its triangle.
     grow: f64,
 }
 
@@ -114,6 +117,7 @@ impl<'a> RayCaster<'a> {
         }
         Ok(RayCaster {
             bvh,
+            tree: bvh.ray_tree()?,
             pose: *pose,
             max_t: max_t.max(0.0),
         })
@@ -155,7 +159,7 @@ impl<'a> RayCaster<'a> {
         // world's units. The largest local parameter worth a look (rounded up).
         let k = k1 + k2;
         let limit = upper_scaled(self.max_t, k);
-        let best = ray.search(self.bvh, limit, |t| {
+        let best = ray.search(self.bvh, self.tree, limit, |t| {
             let tw = scaled(t, -k);
             tw.is_finite() && tw <= self.max_t
         })?;
@@ -245,94 +249,102 @@ impl LocalRay {
         (t >= -tol).then_some(t.max(0.0))
     }
 
-    /// Where the ray enters node `r`'s grown box, clipped to `[0, limit]`: `None` if it misses
-    /// the box there.
-    #[inline]
-    fn enter(&self, bvh: &Bvh, r: NodeRef, limit: f64) -> Option<f64> {
-        let b = bvh.obb(r);
-        let o = b.axes.tr_mul(&(self.o - b.center));
-        let d = b.axes.tr_mul(&self.d);
-        let (mut lo, mut hi) = (0.0f64, limit);
-        for j in 0..3 {
-            let h = b.half[j] + self.grow;
-            // A direction parallel to the slab is tilted by 1e-300 (far below the growth): no
-            // 0 * inf, so no NaN.
-            let inv = 1.0 / d[j].abs().max(1e-300).copysign(d[j]);
-            // The slab is [-q - w, -q + w]: its centre's and half width's parameters.
-            let (q, w) = (o[j] * inv, h * inv.abs());
-            lo = lo.max(-q - w);
-            hi = hi.min(w - q);
+    /// The nearest hit among the triangles of `tree` (the ray layout of `bvh`) at a parameter
+    /// `<= limit` that `accept` takes (ties: the triangle added first), searching nearer nodes
+    /// first.
+    fn search(
+        &self,
+        bvh: &Bvh,
+        tree: &RayTree,
+        limit: f64,
+        accept: impl Fn(f64) -> bool,
+    ) -> Option<Best> {
+        match SlabRay::new(&self.o, &self.d, self.grow, tree.extent()) {
+            SlabRay::Single(s) => self.search_with(bvh, tree, &s, limit, accept),
+            SlabRay::Double(s) => self.search_with(bvh, tree, &s, limit, accept),
         }
-        (lo <= hi).then_some(lo)
     }
 
-    /// The nearest hit in `bvh` at a parameter `<= limit` that `accept` takes (ties: the triangle
-    /// added first), searching nearer nodes first.
-    fn search(&self, bvh: &Bvh, limit: f64, accept: impl Fn(f64) -> bool) -> Option<Best> {
+    /// [`search`](LocalRay::search) with the slab tests of `slab`.
+    fn search_with<T: Lane>(
+        &self,
+        bvh: &Bvh,
+        tree: &RayTree,
+        slab: &Slab<T>,
+        limit: f64,
+        accept: impl Fn(f64) -> bool,
+    ) -> Option<Best> {
         let mut best: Option<Best> = None;
         // How far a node may start and still be visited: the best hit's parameter (a node starting
         // exactly there may hold a triangle added earlier), grown by a few ulps for the slab test's
         // last rounding.
         let reach = |best: &Option<Best>| best.map_or(limit, |b| b.t) * (1.0 + 1e-14);
-        let offer = |best: &mut Option<Best>, slot: usize| {
-            let Some(t) = self.hit(&bvh.tri(slot)) else {
-                return;
-            };
-            let added = bvh.added[slot];
-            let better = match best {
-                None => true,
-                Some(b) => t < b.t || (t == b.t && added < b.added),
-            };
-            if better && accept(t) {
-                *best = Some(Best { t, slot, added });
-            }
-        };
-        let root = bvh.root();
-        if let NodeKind::Leaf(slot) = root.kind() {
-            offer(&mut best, slot);
-            return best;
-        }
-        self.enter(bvh, root, reach(&best))?;
-        let mut stack = PairStack::new();
-        let mut node = root;
-        'search: loop {
-            // The children: leaves are tested at once, and so are the two leaves of a child that
-            // has nothing else (two triangle tests cost less than its box's); other inner nodes
-            // are cut by their boxes.
-            let mut next: [Option<(NodeRef, f64)>; 2] = [None, None];
-            for (k, c) in bvh.children(node).into_iter().enumerate() {
-                match c.kind() {
-                    NodeKind::Leaf(slot) => offer(&mut best, slot),
-                    NodeKind::Inner(_) => match bvh.children(c) {
-                        [a, b] if a.is_leaf() && b.is_leaf() => {
-                            offer(&mut best, a.triangle());
-                            offer(&mut best, b.triangle());
+        // Nodes still to visit with their entry parameters, the nearest on top: each level of the
+        // tree (at most `MAX_DEPTH`) leaves at most three children behind. Left uninitialised
+        // (zeroing it would cost as much as a short search).
+        let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
+        let mut len = 0;
+        let mut node = RayChild::Inner(tree.root());
+        loop {
+            match node {
+                RayChild::Inner(i) => {
+                    let cut = tree.cut(i, slab, reach(&best));
+                    // The crossed children, farthest first: all but the nearest are stacked, the
+                    // nearest is visited next.
+                    let mut crossed = [(0usize, 0.0f64); 4];
+                    let mut n = 0;
+                    for (k, &t) in cut.iter().enumerate() {
+                        if t != f64::INFINITY {
+                            let mut j = n;
+                            while j > 0 && crossed[j - 1].1 < t {
+                                crossed[j] = crossed[j - 1];
+                                j -= 1;
+                            }
+                            crossed[j] = (k, t);
+                            n += 1;
                         }
-                        _ => next[k] = self.enter(bvh, c, reach(&best)).map(|lo| (c, lo)),
-                    },
+                    }
+                    if n > 0 {
+                        for &(k, t) in &crossed[..n - 1] {
+                            // Checked indexing: the depth bound keeps it in range.
+                            stack[len] = MaybeUninit::new((tree.child(i, k), t));
+                            len += 1;
+                        }
+                        node = tree.child(i, crossed[n - 1].0);
+                        continue;
+                    }
+                }
+                RayChild::Leaf { first, count } => {
+                    for j in first..first + count {
+                        let slot = tree.slot(j);
+                        let Some(t) = self.hit(&bvh.tri(slot)) else {
+                            continue;
+                        };
+                        let added = bvh.added[slot];
+                        let better = match best {
+                            None => true,
+                            Some(b) => t < b.t || (t == b.t && added < b.added),
+                        };
+                        if better && accept(t) {
+                            best = Some(Best { t, slot, added });
+                        }
+                    }
                 }
             }
-            node = match next {
-                [Some(a), Some(b)] => {
-                    let (near, far) = if b.1 < a.1 { (b, a) } else { (a, b) };
-                    stack.push(NodePair {
-                        a: far.0,
-                        b: NodeRef::default(),
-                        bound: far.1,
-                    });
-                    near.0
+            // The nearest stacked node that may still hold a better hit.
+            loop {
+                if len == 0 {
+                    return best;
                 }
-                [Some(a), None] | [None, Some(a)] => a.0,
-                [None, None] => loop {
-                    match stack.pop() {
-                        None => break 'search,
-                        Some(p) if p.bound <= reach(&best) => break p.a,
-                        Some(_) => {}
-                    }
-                },
-            };
+                len -= 1;
+                // SAFETY: the entries below `len` were written above.
+                let (next, enter) = unsafe { stack[len].assume_init() };
+                if enter <= reach(&best) {
+                    node = next;
+                    break;
+                }
+            }
         }
-        best
     }
 }
 
@@ -469,7 +481,8 @@ fn upper_scaled(x: f64, k: i32) -> f64 {
 /// NaN, infinite or larger than 1e150, `NonFiniteCoordinate` for an origin coordinate that is NaN,
 /// infinite or larger than 1e150 or a direction coordinate that is NaN or infinite,
 /// `InvalidArgument` for a zero direction or a `max_t` that is negative or NaN (`max_t` may be
-/// infinite).
+/// infinite), `OutOfMemory` if the model's tree of axis-aligned boxes, made on its first ray cast
+/// (and kept in the model), cannot be allocated.
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, ray_cast};
@@ -582,8 +595,9 @@ mod tests {
                     f64::INFINITY
                 };
                 let ray = LocalRay::new(o, d, bvh.scale);
+                let tree = bvh.ray_tree().unwrap();
                 let fast = ray
-                    .search(bvh, max_t, |t| t <= max_t)
+                    .search(bvh, tree, max_t, |t| t <= max_t)
                     .map(|b| (b.t, b.slot));
                 let mut brute: Option<(f64, usize, u32)> = None;
                 for slot in 0..bvh.num_tris() {
@@ -599,6 +613,35 @@ mod tests {
                 assert_eq!(fast, brute.map(|(t, s, _)| (t, s)), "{o:?} {d:?}");
             }
         }
+    }
+
+    /// A refit drops the ray tree (its boxes are the old vertices'): casts after it see the new
+    /// positions.
+    #[test]
+    fn refit_remakes_the_ray_tree() {
+        let strip = |dx: f64| -> Vec<[[f64; 3]; 3]> {
+            (0..50)
+                .map(|i| {
+                    let x = dx + f64::from(i);
+                    [[x, 0.0, 0.0], [x + 1.0, 0.0, 0.0], [x, 1.0, 0.0]]
+                })
+                .collect()
+        };
+        let mut model = Model::from_triangles(
+            strip(0.0)
+                .iter()
+                .zip(0..)
+                .map(|(t, i)| (t[0], t[1], t[2], i)),
+        )
+        .unwrap();
+        let down = Vec3::new(0.0, 0.0, -1.0);
+        let at = |x: f64| Vec3::new(x, 0.25, 3.0);
+        let hit = |m: &Model, x: f64| ray_cast(m, &Pose::identity(), &at(x), &down, f64::INFINITY);
+        assert_eq!(hit(&model, 10.25).unwrap().unwrap().triangle, 10);
+        model.refit(&strip(100.0)).unwrap();
+        assert_eq!(hit(&model, 10.25).unwrap(), None);
+        let h = hit(&model, 110.25).unwrap().unwrap();
+        assert_eq!((h.triangle, h.t), (10, 3.0));
     }
 
     #[test]

@@ -4,7 +4,8 @@
 //! and ray casting on one thread. See README.md here and BENCHMARKS.md, "Against parry3d-f64".
 //!
 //! `cargo run --release --manifest-path bench/parry/Cargo.toml -- [--quick] [--rounds N]
-//! [--models DIR] [--only NAME,...]` (names: spheres shells bunny coherent build points rays).
+//! [--models DIR] [--only NAME,...]` (names: spheres shells bunny coherent within build points
+//! rays).
 //!
 //! Each row is timed in alternating rounds (the order of the two libraries swaps from round to
 //! round); a round times each query on its own and keeps the median over the poses (rays: the
@@ -14,15 +15,17 @@
 #[path = "../../../examples/workloads/mod.rs"]
 mod workloads;
 
+use parry3d_f64::bounding_volume::BoundingVolume;
 use parry3d_f64::math::{Matrix, Pose as PPose, Real, Rotation, Vector};
 use parry3d_f64::query::{
     self, ClosestPoints, DefaultQueryDispatcher, PointQuery, QueryDispatcher, Ray, RayCast,
 };
-use parry3d_f64::shape::{Shape, TriMesh};
+use parry3d_f64::shape::{Shape, TriMesh, TriMeshFlags};
 use pqp::geometry::tri_distance;
 use pqp::{
-    ContactMode, DistanceOptions, DistanceResult, Model, Pose, Search, Vec3, closest_point,
-    collide, distance, distance_into, ray_cast, tolerance,
+    CollideResult, ContactMode, DistanceOptions, DistanceResult, Model, Pose, Search, Vec3,
+    closest_point, collide, distance, distance_into, ray_cast, signed_distance, tolerance,
+    within_distance,
 };
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -105,6 +108,11 @@ fn build_ours(tris: &[Tri]) -> Model {
 /// A parry `TriMesh` with its default flags, from the same triangle soup: three vertices per
 /// triangle, as our model stores them (no vertex sharing to find).
 fn build_parry(tris: &[Tri]) -> TriMesh {
+    build_parry_with(tris, TriMeshFlags::empty())
+}
+
+/// As [`build_parry`], with `flags` (none: parry's defaults).
+fn build_parry_with(tris: &[Tri], flags: TriMeshFlags) -> TriMesh {
     let mut vertices = Vec::with_capacity(3 * tris.len());
     let mut indices = Vec::with_capacity(tris.len());
     for (i, (a, b, c, _)) in tris.iter().enumerate() {
@@ -114,7 +122,7 @@ fn build_parry(tris: &[Tri]) -> TriMesh {
         let k = 3 * i as u32;
         indices.push([k, k + 1, k + 2]);
     }
-    TriMesh::new(vertices, indices).unwrap_or_else(|e| die(&format!("parry: {e:?}")))
+    TriMesh::with_flags(vertices, indices, flags).unwrap_or_else(|e| die(&format!("parry: {e:?}")))
 }
 
 /// Our pose as parry's (a unit quaternion and a translation).
@@ -185,6 +193,34 @@ fn parry_collide_all(
     }
 }
 
+/// Every triangle pair at distance at most `tol`, with parry's pieces as [`parry_collide_all`]:
+/// its BVH of mesh 1 against mesh 2's box grown by `tol`, each such triangle's box grown by `tol`
+/// against mesh 2's tree, and its triangle-triangle distance through its default dispatcher.
+fn parry_within_pairs(
+    m1: &TriMesh,
+    p1: &PPose,
+    m2: &TriMesh,
+    p2: &PPose,
+    tol: f64,
+    out: &mut Vec<(u32, u32)>,
+) {
+    out.clear();
+    let pos12 = p1.inv_mul(p2);
+    let pos21 = pos12.inverse();
+    let box2_in1 = m2.local_aabb().transform_by(&pos12).loosened(tol);
+    for i in m1.bvh().intersect_aabb(&box2_in1) {
+        let t1 = m1.triangle(i);
+        let box1_in2 = t1.compute_aabb(&pos21).loosened(tol);
+        for j in m2.bvh().intersect_aabb(&box1_in2) {
+            let t2 = m2.triangle(j);
+            let d = DefaultQueryDispatcher.distance(&pos12, &t1, &t2);
+            if d.is_ok_and(|d| d.distance <= tol) {
+                out.push((i, j));
+            }
+        }
+    }
+}
+
 fn parry_first(m1: &TriMesh, p1: &PPose, m2: &TriMesh, p2: &PPose) -> bool {
     query::intersection_test(p1, m1, p2, m2).is_ok_and(|h| h.intersecting)
 }
@@ -247,6 +283,41 @@ fn alternate_chunks(n: usize, rounds: usize, fs: &mut [&mut dyn FnMut(usize)]) -
         }
     }
     per_round.into_iter().map(median).collect()
+}
+
+/// A timing of [`alternate`]'s form.
+type Timing = fn(usize, usize, &mut [&mut dyn FnMut(usize)]) -> Vec<f64>;
+
+/// [`alternate`] of two queries whose answers are only kept from being optimised away.
+fn alternate_pair<A, B>(
+    n: usize,
+    rounds: usize,
+    a: impl Fn(usize) -> A,
+    b: impl Fn(usize) -> B,
+) -> Vec<f64> {
+    time_pair(alternate, n, rounds, a, b)
+}
+
+/// Two queries timed by `timing` (their answers only kept from being optimised away).
+fn time_pair<A, B>(
+    timing: Timing,
+    n: usize,
+    rounds: usize,
+    a: impl Fn(usize) -> A,
+    b: impl Fn(usize) -> B,
+) -> Vec<f64> {
+    timing(
+        n,
+        rounds,
+        &mut [
+            &mut |i| {
+                black_box(a(i));
+            },
+            &mut |i| {
+                black_box(b(i));
+            },
+        ],
+    )
 }
 
 /// Queries per timed chunk in [`alternate_chunks`].
@@ -478,19 +549,63 @@ fn run_tolerance(rep: &mut Report, c: &PairCase, workload: &str, tol: f64, round
     } else {
         format!("**{bad} flags differ** (ours: {closer} closer)")
     };
-    let t = alternate(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours_flag(i));
-            },
-            &mut |i| {
-                black_box(parry_flag(i));
-            },
-        ],
-    );
+    let t = alternate_pair(n, rounds, ours_flag, parry_flag);
     rep.add(workload, &format!("tolerance {tol}"), n, &t, "us", answers);
+}
+
+/// The pairs of `r` as sorted id pairs.
+fn sorted_ids(r: &CollideResult) -> Vec<(u32, u32)> {
+    let mut ids: Vec<(u32, u32)> = r
+        .pairs()
+        .iter()
+        .map(|p| (p.id1 as u32, p.id2 as u32))
+        .collect();
+    ids.sort_unstable();
+    ids
+}
+
+/// Every pair within `tol`: ours `within_distance`, parry's pieces ([`parry_within_pairs`]); pair
+/// sets compared pose by pose.
+fn run_within(rep: &mut Report, c: &PairCase, workload: &str, tol: f64, rounds: usize) {
+    let n = c.poses.len();
+    let mut pairs = Vec::new();
+    let (mut poses_differ, mut total) = (0, 0);
+    for i in 0..n {
+        let (a, b) = &c.poses[i];
+        let ours = sorted_ids(&within_distance(&c.m1, a, &c.m2, b, tol).unwrap());
+        let (pa, pb) = &c.ppose[i];
+        parry_within_pairs(&c.q1, pa, &c.q2, pb, tol, &mut pairs);
+        pairs.sort_unstable();
+        total += ours.len();
+        poses_differ += (ours != pairs) as usize;
+    }
+    let answers = if poses_differ == 0 {
+        format!("same pairs ({total} pairs)")
+    } else {
+        format!("**{poses_differ} poses differ** (ours {total} pairs)")
+    };
+    let mut ours = |i: usize| {
+        let (a, b) = &c.poses[i];
+        black_box(
+            within_distance(&c.m1, a, &c.m2, b, tol)
+                .unwrap()
+                .num_pairs(),
+        );
+    };
+    let mut theirs = |i: usize| {
+        let (a, b) = &c.ppose[i];
+        parry_within_pairs(&c.q1, a, &c.q2, b, tol, &mut pairs);
+        black_box(pairs.len());
+    };
+    let t = alternate(n, rounds, &mut [&mut ours, &mut theirs]);
+    rep.add(
+        workload,
+        &format!("within distance {tol}"),
+        n,
+        &t,
+        "us",
+        answers,
+    );
 }
 
 fn run_collide(rep: &mut Report, c: &PairCase, workload: &str, all: bool, rounds: usize) {
@@ -509,13 +624,7 @@ fn run_collide(rep: &mut Report, c: &PairCase, workload: &str, all: bool, rounds
             (0, 0, 0, 0);
         for i in 0..n {
             let (a, b) = &c.poses[i];
-            let r = collide(&c.m1, a, &c.m2, b, ContactMode::All).unwrap();
-            let mut ours: Vec<(u32, u32)> = r
-                .pairs()
-                .iter()
-                .map(|p| (p.id1 as u32, p.id2 as u32))
-                .collect();
-            ours.sort_unstable();
+            let ours = sorted_ids(&collide(&c.m1, a, &c.m2, b, ContactMode::All).unwrap());
             let (pa, pb) = &c.ppose[i];
             parry_collide_all(&c.q1, pa, &c.q2, pb, &mut pairs);
             pairs.sort_unstable();
@@ -673,17 +782,35 @@ fn workload_shells(rep: &mut Report, o: &Options, n: usize) {
     run_distance(rep, &c, "2 shells", "distance exact", o.rounds, false);
 }
 
-fn workload_bunny(rep: &mut Report, o: &Options) {
+/// Workloads 3 and 4's cases: the bunny against itself and against the torus, at the same poses.
+fn bunny_cases(o: &Options) -> [(&'static str, PairCase); 2] {
     let bunny = load(&o.shared("bunny.tris"));
     let torus = load(&o.shared("torus.tris"));
     let (_, radius) = centre_and_radius(&bunny);
     let n = if o.quick { 100 } else { 1000 };
-    for (name, other) in [("bunny-bunny", &bunny), ("bunny-torus", &torus)] {
-        let c = PairCase::new(&bunny, other, bunny_poses(&bunny, other, radius, n));
-        run_collide(rep, &c, &format!("3 {name}"), true, o.rounds);
-        run_collide(rep, &c, &format!("3 {name}"), false, o.rounds);
-        run_distance(rep, &c, &format!("4 {name}"), "distance", o.rounds, false);
-        run_tolerance(rep, &c, &format!("4 {name}"), 0.05, o.rounds);
+    [("bunny-bunny", &bunny), ("bunny-torus", &torus)].map(|(name, other)| {
+        (
+            name,
+            PairCase::new(&bunny, other, bunny_poses(&bunny, other, radius, n)),
+        )
+    })
+}
+
+fn workload_bunny(rep: &mut Report, o: &Options) {
+    for (name, c) in &bunny_cases(o) {
+        run_collide(rep, c, &format!("3 {name}"), true, o.rounds);
+        run_collide(rep, c, &format!("3 {name}"), false, o.rounds);
+        run_distance(rep, c, &format!("4 {name}"), "distance", o.rounds, false);
+        run_tolerance(rep, c, &format!("4 {name}"), 0.05, o.rounds);
+    }
+}
+
+/// Every pair within a distance, on workload 4's poses.
+fn workload_within(rep: &mut Report, o: &Options) {
+    for (name, c) in &bunny_cases(o) {
+        for tol in [0.0, 0.01] {
+            run_within(rep, c, &format!("4 {name}"), tol, o.rounds);
+        }
     }
 }
 
@@ -798,21 +925,54 @@ fn workload_points(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds:
     } else {
         format!("**{bad} distances differ by more than 1e-9 relative** (largest {worst:.1e})")
     };
-    let t = alternate(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(theirs(i));
-            },
-        ],
-    );
+    let t = alternate_pair(n, rounds, ours, theirs);
     rep.add(
         &format!("points {name}"),
         &format!("closest point ({} triangles)", tris.len()),
+        n,
+        &t,
+        "us",
+        answers,
+    );
+    // Signed distance: ours by the winding number; parry's projection on a mesh with its
+    // pseudo-normals (`ORIENTED`, vertices merged so that it has a topology), inside when its
+    // projection says so.
+    let oriented = build_parry_with(
+        tris,
+        TriMeshFlags::MERGE_DUPLICATE_VERTICES | TriMeshFlags::ORIENTED,
+    );
+    let ours_signed = |i: usize| {
+        let (p, x) = &queries[i];
+        signed_distance(&ours_m, p, x).unwrap()
+    };
+    let theirs_signed = |i: usize| {
+        let (p, x) = &pq[i];
+        let proj = oriented.project_point(p, *x, false);
+        let d = (proj.point - *x).length();
+        if proj.is_inside { -d } else { d }
+    };
+    let (mut signs, mut bad, mut worst, mut inside) = (0, 0, 0.0f64, 0);
+    for i in 0..n {
+        let (a, b) = (ours_signed(i), theirs_signed(i));
+        inside += (a < 0.0) as usize;
+        if (a < 0.0) != (b < 0.0) && a != 0.0 && b != 0.0 {
+            signs += 1;
+        }
+        worst = worst.max(rel_diff(a.abs(), b.abs()));
+        bad += !close(a.abs(), b.abs(), 1e-9) as usize;
+    }
+    let answers = format!(
+        "{} distances, {signs} signs differ (ours: {inside} inside)",
+        if bad == 0 {
+            format!("same (largest relative difference {worst:.1e})")
+        } else {
+            format!("**{bad} differ** (largest {worst:.1e})")
+        }
+    );
+    let t = alternate_pair(n, rounds, ours_signed, theirs_signed);
+    rep.add(
+        &format!("points {name}"),
+        "signed distance (parry: pseudo-normals)",
         n,
         &t,
         "us",
@@ -880,34 +1040,14 @@ fn workload_rays(rep: &mut Report, name: &str, tris: &[Tri], n: usize, rounds: u
             "**{differ} rays differ** ({hits} hit by both; largest relative difference of t {worst:.1e})"
         )
     };
-    let t = alternate_chunks(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(theirs(i));
-            },
-        ],
-    );
+    let t = time_pair(alternate_chunks, n, rounds, ours, theirs);
     let query = format!("ray cast, 1 thread ({} triangles)", tris.len());
     rep.add(&format!("rays {name}"), &query, n, &t, "rays/s", answers);
     // Ours answers the point, normal and triangle too: parry's form that adds the normal and
     // the feature hit.
-    let t = alternate_chunks(
-        n,
-        rounds,
-        &mut [
-            &mut |i| {
-                black_box(ours(i));
-            },
-            &mut |i| {
-                black_box(parry_m.cast_ray_and_get_normal(&pid, &prays[i], Real::MAX, false));
-            },
-        ],
-    );
+    let t = time_pair(alternate_chunks, n, rounds, ours, |i| {
+        parry_m.cast_ray_and_get_normal(&pid, &prays[i], Real::MAX, false)
+    });
     let query = "ray cast, parry with normal (`cast_ray_and_get_normal`)";
     rep.add(
         &format!("rays {name}"),
@@ -935,6 +1075,9 @@ fn main() {
     }
     if o.wants("coherent") {
         workload_coherent(&mut rep, &o);
+    }
+    if o.wants("within") {
+        workload_within(&mut rep, &o);
     }
     let big: usize = if o.quick { 200 } else { 1000 };
     if o.wants("build") {
