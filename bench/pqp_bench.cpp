@@ -3,7 +3,7 @@
 //   pqp_bench [--models DIR] [--only w1,w2,...] [--reps N] [--quick] [--ours-only] [--threads N]
 //             [--no-verify]
 // Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies
-// build-speed (only when named: ours on 1 and on every core against PQP 1.3 if built in), and
+// build-speed (only when named, with PQP 1.3 built in: ours on 1 and on every core against it), and
 // peers when built with PQP 1.3 or Coal (CMake -DPQP13_SOURCE_DIR, -DCOAL_PREFIX; see
 // BENCHMARKS.md) (default: all). `strategies` times our distance query with every search strategy
 // (ours only); `peers` runs ours, PQP 1.3 and Coal in alternating rounds.
@@ -1824,8 +1824,8 @@ int main(int argc, char** argv) {
     if (o.want("build")) stage("build"), workload_build(o);
     if (o.want("threads")) stage("threads"), workload_threads(o);
     if (o.want("strategies")) stage("strategies"), workload_strategies(o);
-    if (o.only.count("build-speed")) stage("build-speed"), workload_peer_builds(o);
 #if defined(PQP_BENCH_WITH_PQP13) || defined(PQP_BENCH_WITH_COAL)
+    if (o.only.count("build-speed")) stage("build-speed"), workload_peer_builds(o);
     if (o.want("peers")) stage("peers"), workload_peers(o);
 #endif
     report(o);
