@@ -5,8 +5,11 @@
 use pqp::capi::*;
 use pqp::{DistanceOptions, Model, Pose, distance};
 
+/// A triangle as `Model::add_triangle` takes it: three vertices and an id.
+type Triangle = ([f64; 3], [f64; 3], [f64; 3], i32);
+
 /// A bumpy sphere of `2 * lat * lon` triangles.
-fn bumpy(lat: usize, lon: usize, shift: f64) -> Vec<([f64; 3], [f64; 3], [f64; 3], i32)> {
+fn bumpy(lat: usize, lon: usize, shift: f64) -> Vec<Triangle> {
     let point = |i: usize, j: usize| {
         let th = std::f64::consts::PI * i as f64 / lat as f64;
         let ph = 2.0 * std::f64::consts::PI * (j % lon) as f64 / lon as f64;
@@ -34,7 +37,7 @@ fn bumpy(lat: usize, lon: usize, shift: f64) -> Vec<([f64; 3], [f64; 3], [f64; 3
     tris
 }
 
-fn built(tris: &[([f64; 3], [f64; 3], [f64; 3], i32)], threads: Option<usize>) -> Model {
+fn built(tris: &[Triangle], threads: Option<usize>) -> Model {
     let mut m = Model::new();
     for &(a, b, c, id) in tris {
         m.add_triangle(a, b, c, id).unwrap();

@@ -8,7 +8,8 @@
 //! triangles), which give the same box and, up to the order points are met in, the same swept
 //! sphere volume; the triangles are partitioned in place; and nothing is allocated per node.
 //!
-//! Nodes are numbered in pre-order (a node, its first child's subtree, its second child's):
+//! Nodes are numbered in pre-order (a node, its first child's subtree, its second child's; the
+//! first child is the side of the split with more triangles):
 //! a subtree of `m` triangles holds exactly `m - 1` inner nodes, so every node's index is known
 //! before its subtree is built, and subtrees are built independently, on any number of threads
 //! (`build_threads.rs`), into the same array: the hierarchy is the same, bit for bit, whatever the
@@ -475,16 +476,22 @@ fn placeholder() -> Node {
 }
 
 /// Partitions the triangles `recs` (at least two; their split `keys` alongside) and returns how
-/// many go to the first child (never 0 nor all): those whose centroid projects below the mean, or
-/// the lower half by projection when the mean splits nothing off or `median` is asked for.
+/// many go to the first child (never 0 nor all): those whose centroid projects below the mean or
+/// those above it, whichever are more, or the lower half by projection when the mean splits
+/// nothing off or `median` is asked for.
 fn split(recs: &mut [Record], keys: &mut [f64], median: bool) -> usize {
     let count = recs.len();
     debug_assert_eq!(keys.len(), count);
     if !median {
         let mean = keys.iter().sum::<f64>() / count as f64;
+        // The side with more triangles goes first (becomes the first child): searches that stop
+        // early or prune by a bound (collide first, distance, tolerance) meet it first, and do
+        // fewer tests for it (BENCHMARKS.md, "Build speed").
+        let below = keys.iter().filter(|&&k| k < mean).count();
+        let upper_first = 2 * below < count;
         let mut left = 0;
         for i in 0..count {
-            if keys[i] < mean {
+            if (keys[i] < mean) != upper_first {
                 if i != left {
                     recs.swap(i, left);
                     keys.swap(i, left);
@@ -932,17 +939,26 @@ mod tests {
 
     #[test]
     fn nodes_are_in_pre_order() {
-        // Each node's first child follows it, and its second child follows the first's subtree.
+        // Each node's first child follows it, and its second child follows the first's subtree;
+        // on a mean split the first child has at least as many triangles as the second.
         let b = Bvh::build(bumpy_sphere(10, 20), VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        fn count(b: &Bvh, r: NodeRef) -> usize {
+            if r.is_leaf() {
+                1
+            } else {
+                b.children(r).iter().map(|&c| count(b, c)).sum()
+            }
+        }
         fn walk(b: &Bvh, r: NodeRef, next: &mut usize) {
             if r.is_leaf() {
                 return;
             }
             assert_eq!(r, NodeRef::inner(*next));
             *next += 1;
-            for c in b.children(r) {
-                walk(b, c, next);
-            }
+            let [c0, c1] = b.children(r);
+            assert!(count(b, c0) >= count(b, c1));
+            walk(b, c0, next);
+            walk(b, c1, next);
         }
         let mut next = 0;
         walk(&b, b.root(), &mut next);
