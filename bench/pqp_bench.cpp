@@ -2,7 +2,8 @@
 //
 //   pqp_bench [--models DIR] [--only w1,w2,...] [--reps N] [--quick] [--ours-only] [--threads N]
 //             [--no-verify]
-// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies, and
+// Workloads: spheres shells bunny-collide bunny-distance coherent build threads strategies
+// build-speed (only when named, with PQP 1.3 built in: ours on 1 and on every core against it), and
 // peers when built with PQP 1.3 or Coal (CMake -DPQP13_SOURCE_DIR, -DCOAL_PREFIX; see
 // BENCHMARKS.md) (default: all). `strategies` times our distance query with every search strategy
 // (ours only); `peers` runs ours, PQP 1.3 and Coal in alternating rounds.
@@ -1548,6 +1549,75 @@ void peer_build(const Mesh& m, int rounds) {
     add_peer_row("build", fmt("%zu triangles", m.size()), 1, t, agree13, agree_coal);
 }
 
+// Build speed (issue 21): ours on one thread and on every core (pqp_model_end_threads, 0), PQP 1.3
+// beside them when built in, in alternating rounds; each one's median build time, the model's
+// destruction included, as peer_build. `--threads N` sets the threaded build's count (default 0,
+// every core). Built with -DPQP_BENCH_OLD_LIBRARY (a library from before pqp_model_end_threads),
+// the threaded column is left out: for before/after runs.
+pqp_model* build_ours_threads(const Mesh& mesh, unsigned threads) {
+    pqp_model* m = pqp_model_create();
+    if (!m) die("pqp_model_create failed");
+    check(pqp_model_begin(m, static_cast<int>(mesh.size())), "pqp_model_begin");
+    for (size_t i = 0; i < mesh.size(); ++i)
+        check(pqp_model_add_tri(m, &mesh[i][0], &mesh[i][3], &mesh[i][6], static_cast<int>(i)),
+              "pqp_model_add_tri");
+#ifdef PQP_BENCH_OLD_LIBRARY
+    (void)threads;
+    check(pqp_model_end(m), "pqp_model_end");
+#else
+    check(pqp_model_end_threads(m, threads), "pqp_model_end_threads");
+#endif
+    return m;
+}
+
+void workload_peer_builds(const Options& o) {
+    const unsigned threads = o.threads > 0 ? static_cast<unsigned>(o.threads) : 0u;
+    std::printf("\n## Build speed (ms per build, median of alternating rounds; threaded: %u = %s)\n\n"
+                "| triangles | rounds | ours, 1 thread | ours, threaded | PQP 1.3 | PQP 1.3 / ours 1 thread | "
+                "PQP 1.3 / ours threaded | 1 thread / threaded |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+                threads, threads == 0 ? "every core" : "threads");
+    struct Size {
+        int lat, lon, rounds;
+    };
+    for (const Size sz : {Size{kSphereLat, kSphereLon, 9}, Size{501, 1000, 5}}) {
+        if (o.quick && sz.lat > kSphereLat) continue;
+        const Mesh m = uv_sphere(1.0, sz.lat, sz.lon);
+        const int rounds = std::max(o.reps, sz.rounds);
+        std::vector<double> one, many, peer;
+        for (int r = 0; r < rounds; ++r) {
+            std::vector<std::function<void()>> libs{
+                [&] {
+                    const auto t0 = Clock::now();
+                    pqp_model_destroy(build_ours_threads(m, 1));
+                    one.push_back(secs(t0, Clock::now()));
+                },
+#ifndef PQP_BENCH_OLD_LIBRARY
+                [&] {
+                    const auto t0 = Clock::now();
+                    pqp_model_destroy(build_ours_threads(m, threads));
+                    many.push_back(secs(t0, Clock::now()));
+                },
+#endif
+#ifdef PQP_BENCH_WITH_PQP13
+                [&] {
+                    const auto t0 = Clock::now();
+                    pqp13::destroy(pqp13::build(m[0].data(), m.size()));
+                    peer.push_back(secs(t0, Clock::now()));
+                },
+#endif
+            };
+            for (size_t j = 0; j < libs.size(); ++j) libs[(static_cast<size_t>(r) + j) % libs.size()]();
+        }
+        auto ms = [](std::vector<double> v) { return v.empty() ? 0.0 : 1e3 * median(v); };
+        auto ratio = [](double a, double b) { return a > 0 && b > 0 ? fmt("%.2f", a / b) : std::string("-"); };
+        const double a = ms(one), b = ms(many), c = ms(peer);
+        std::printf("| %zu | %d | %.2f | %s | %s | %s | %s | %s |\n", m.size(), rounds, a,
+                    b > 0 ? fmt("%.2f", b).c_str() : "-", c > 0 ? fmt("%.2f", c).c_str() : "-",
+                    ratio(c, a).c_str(), ratio(c, b).c_str(), ratio(a, b).c_str());
+        std::fflush(stdout);
+    }
+}
+
 void workload_peers(const Options& o) {
     {
         const Mesh sphere = uv_sphere(1.0, kSphereLat, kSphereLon);
@@ -1732,7 +1802,7 @@ Options parse(int argc, char** argv) {
         } else {
             die("unknown option " + a +
                 " (see the comment at the top of bench/pqp_bench.cpp; workloads: spheres shells bunny-collide "
-                "bunny-distance coherent build threads strategies peers)");
+                "bunny-distance coherent build threads strategies peers build-speed)");
         }
     }
     return o;
@@ -1758,6 +1828,7 @@ int main(int argc, char** argv) {
     if (o.want("threads")) stage("threads"), workload_threads(o);
     if (o.want("strategies")) stage("strategies"), workload_strategies(o);
 #if defined(PQP_BENCH_WITH_PQP13) || defined(PQP_BENCH_WITH_COAL)
+    if (o.only.count("build-speed")) stage("build-speed"), workload_peer_builds(o);
     if (o.want("peers")) stage("peers"), workload_peers(o);
 #endif
     report(o);

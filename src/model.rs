@@ -196,6 +196,24 @@ impl Model {
     /// included): it stays unbuilt, in the state it was in, until triangles are added and `end`
     /// succeeds; `Err(ModelOutOfMemory)` if the hierarchy could not be allocated.
     pub fn end(&mut self) -> Result<(), Error> {
+        self.end_threads(1)
+    }
+
+    /// [`end`](Model::end) on up to `threads` threads (0: as many as the machine has cores, as
+    /// [`std::thread::available_parallelism`] tells). The hierarchy, and so every query answer, is
+    /// the same, bit for bit, whatever the number; only the time differs (1: this thread only, as
+    /// `end`). More threads than cores is allowed, and no more are started than there are
+    /// subtrees of a few thousand triangles to build (a small model is built on this thread).
+    /// Errors as `end`.
+    ///
+    /// ```
+    /// use pqp::Model;
+    /// let mut m = Model::new();
+    /// m.add_triangle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 7).unwrap();
+    /// m.end_threads(0).unwrap();
+    /// assert!(m.is_built());
+    /// ```
+    pub fn end_threads(&mut self, threads: usize) -> Result<(), Error> {
         match self.state {
             BuildState::Built => return Err(Error::BuildOutOfSequence),
             BuildState::Empty => return Err(Error::BuildEmptyModel),
@@ -203,7 +221,11 @@ impl Model {
             BuildState::Begun => {}
         }
         let tris = std::mem::take(&mut self.pending);
-        let bvh = Bvh::build(tris, self.volume, self.collision)?;
+        let threads = match threads {
+            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+            t => t,
+        };
+        let bvh = Bvh::build_threads(tris, self.volume, self.collision, threads)?;
         self.bvh = Some(bvh);
         self.state = BuildState::Built;
         self.uid = NEXT_UID.fetch_add(1, Ordering::Relaxed);

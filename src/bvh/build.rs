@@ -1,12 +1,27 @@
 //! Top-down build, as the SSV paper describes it: principal axes from the covariance of the node's
-//! vertices, split across the axis of largest spread at the mean of the triangle centroids.
+//! triangles' corners, split across the axis of largest spread at the mean of the triangle
+//! centroids.
+//!
+//! What makes it quick: the covariance is summed from per-triangle moments (one record per
+//! triangle, not three corners; see `principal_axes.rs`); the volumes are fitted around the node's
+//! distinct vertices (in a mesh about a sixth of its corners: a vertex is shared by about six
+//! triangles), which give the same box and, up to the order points are met in, the same swept
+//! sphere volume; the triangles are partitioned in place; and nothing is allocated per node.
+//!
+//! Nodes are numbered in pre-order (a node, its first child's subtree, its second child's; the
+//! first child is the side of the split with more triangles):
+//! a subtree of `m` triangles holds exactly `m - 1` inner nodes, so every node's index is known
+//! before its subtree is built, and subtrees are built independently, on any number of threads
+//! (`build_threads.rs`), into the same array: the hierarchy is the same, bit for bit, whatever the
+//! thread count.
 
+use super::build_threads::{GRAIN, Pool};
+use super::principal_axes::{TriMoments, axes_of, covariance};
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
-use nalgebra::SymmetricEigen;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
 /// such as exponentially spaced triangles, where a mean split peels one triangle at a time) the split
@@ -16,95 +31,176 @@ const MEAN_SPLIT_MAX_DEPTH: usize = 40;
 /// Upper bound on the depth of any built tree: the mean-split levels plus a median-split tail.
 pub(crate) const MAX_DEPTH: usize = MEAN_SPLIT_MAX_DEPTH + 33;
 
+/// What the build keeps of a triangle, permuted in place into leaf order as nodes split: a node's
+/// triangles are always one contiguous run of these.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Record {
+    /// Its moments (centroid and corner scatter), for the covariance and the split key.
+    moments: TriMoments,
+    /// Its vertices, indices into the distinct vertices of the input.
+    face: [u32; 3],
+    /// Its position among the triangles as added: becomes `Bvh::added`.
+    added: u32,
+}
+
+/// What every node's build reads: the distinct vertices, the volumes asked for, and the bound on
+/// the vertices' `|p|_1` the fits' rounding allowances take.
+pub(super) struct Input<'a> {
+    verts: &'a [Vec3],
+    volume: VolumeKind,
+    scale: f64,
+}
+
+/// A subtree to build: its triangles' records, the slots of its inner nodes (`recs.len() - 1`,
+/// the first its root's), the index of the first of those slots and of its first triangle in leaf
+/// order, its depth, and its root's distinct vertices (indices into `Input::verts`).
+pub(super) struct Subtree<'a> {
+    pub recs: &'a mut [Record],
+    pub nodes: &'a mut [Node],
+    pub base: usize,
+    pub first_leaf: usize,
+    pub depth: usize,
+    pub verts: Vec<u32>,
+}
+
+/// One builder's scratch, reused from node to node: the vertex stamps that find a node's distinct
+/// vertices (the index of the node that last listed each vertex), the node's points, the same in
+/// its frame, its triangles' split keys, and a stack of vertex lists (each node's, along the path
+/// from the subtree's root).
+pub(super) struct Scratch {
+    stamps: Vec<u32>,
+    points: Vec<Vec3>,
+    local: Vec<Vec3>,
+    keys: Vec<f64>,
+    lists: Vec<u32>,
+}
+
+impl Scratch {
+    pub fn new(num_verts: usize) -> Result<Scratch, Error> {
+        let oom = |_| Error::ModelOutOfMemory;
+        let mut stamps = Vec::new();
+        stamps.try_reserve_exact(num_verts).map_err(oom)?;
+        stamps.resize(num_verts, u32::MAX);
+        Ok(Scratch {
+            stamps,
+            points: Vec::new(),
+            local: Vec::new(),
+            keys: Vec::new(),
+            lists: Vec::new(),
+        })
+    }
+}
+
 impl Bvh {
     /// Builds the hierarchy over `tris` (not empty), with swept sphere volumes of `volume` and
-    /// collision on `collision`. O(n log n).
+    /// collision on `collision`, on this thread. O(n log n).
+    #[cfg(test)]
     pub fn build(
         tris: Vec<(Tri, i32)>,
         volume: VolumeKind,
         collision: CollisionVolume,
     ) -> Result<Bvh, Error> {
+        Bvh::build_threads(tris, volume, collision, 1)
+    }
+
+    /// The hierarchy of [`Bvh::build`], on up to `threads` threads (1: this one only; the
+    /// hierarchy is the same, bit for bit, whatever the number).
+    pub fn build_threads(
+        tris: Vec<(Tri, i32)>,
+        volume: VolumeKind,
+        collision: CollisionVolume,
+        threads: usize,
+    ) -> Result<Bvh, Error> {
         let oom = |_| Error::ModelOutOfMemory;
         let n = tris.len();
         debug_assert!(n > 0);
-        // The triangles and their insertion indices, permuted in place into leaf order as the nodes
-        // split them:
-        // a node's triangles are always one contiguous run, so its vertices are one slice.
-        let mut corners: Vec<Tri> = Vec::new();
-        corners.try_reserve_exact(n).map_err(oom)?;
-        corners.extend(tris.iter().map(|(t, _)| *t));
-        // Each triangle's position in `tris`, permuted alongside: becomes `Bvh::added`.
-        let mut added: Vec<u32> = Vec::new();
-        added.try_reserve_exact(n).map_err(oom)?;
-        added.extend(0..n as u32);
+        // The distinct vertices in the order they first appear in the input, each triangle's
+        // by index.
+        let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3])?;
+        let mut recs: Vec<Record> = Vec::new();
+        recs.try_reserve_exact(n).map_err(oom)?;
+        recs.extend(
+            tris.iter()
+                .zip(&in_faces)
+                .enumerate()
+                .map(|(k, ((t, _), f))| Record {
+                    moments: TriMoments::of(t),
+                    face: *f,
+                    added: k as u32,
+                }),
+        );
+        drop(in_faces);
         let mut given_ids: Vec<i32> = Vec::new();
         given_ids.try_reserve_exact(n).map_err(oom)?;
         given_ids.extend(tris.iter().map(|(_, id)| *id));
         drop(tris);
         // At least every vertex's `|p|_1` (twice the largest, which is rounded): for the rounding
         // allowances of `fit_volumes`.
-        let scale = 2.0
-            * corners
-                .as_flattened()
-                .iter()
-                .fold(0.0f64, |m, p| m.max(p.abs().sum()));
+        let scale = 2.0 * in_verts.iter().fold(0.0f64, |m, p| m.max(p.abs().sum()));
+        let input = Input {
+            verts: &in_verts,
+            volume,
+            scale,
+        };
         let mut nodes: Vec<Node> = Vec::new();
         nodes.try_reserve_exact(n - 1).map_err(oom)?;
-        // Scratch: the node's vertices in its frame, and its triangles' split keys.
-        let mut local: Vec<Vec3> = Vec::new();
-        local.try_reserve_exact(3 * n).map_err(oom)?;
-        let mut keys: Vec<f64> = Vec::new();
-        keys.try_reserve_exact(n).map_err(oom)?;
-
-        // Work list of (node index, first, last exclusive, depth) over the triangles, for ranges of
-        // at least two triangles (a single triangle is a leaf and gets no node).
-        let mut work = Vec::new();
+        nodes.resize(n - 1, placeholder());
         if n > 1 {
-            work.push((0usize, 0usize, n, 0usize));
-            nodes.push(placeholder());
-        }
-        while let Some((ni, lo, hi, depth)) = work.pop() {
-            let a = principal_axes(corners[lo..hi].as_flattened());
-            // The frame exactly as the node will give it back.
-            let axes = frame_from(&a.column(0).into(), &a.column(1).into());
-            let (ssv, obb) = fit_volumes(
-                volume,
-                &axes,
-                &corners[lo..hi],
-                scale,
-                &mut local,
-                &mut keys,
-            );
-            let mut node = Node::new(&ssv, &obb);
-            let mid = split(
-                &mut corners[lo..hi],
-                &mut added[lo..hi],
-                &mut keys,
-                depth >= MEAN_SPLIT_MAX_DEPTH,
-            );
-            for (k, (clo, chi)) in [(lo, lo + mid), (lo + mid, hi)].into_iter().enumerate() {
-                node.children[k] = if chi - clo == 1 {
-                    // Leaves point at the triangle's slot in leaf order.
-                    NodeRef::leaf(clo)
-                } else {
-                    let c = nodes.len();
-                    nodes.push(placeholder());
-                    work.push((c, clo, chi, depth + 1));
-                    NodeRef::inner(c)
-                };
+            // The root's vertices: all of them.
+            let mut all: Vec<u32> = Vec::new();
+            all.try_reserve_exact(in_verts.len()).map_err(oom)?;
+            all.extend(0..in_verts.len() as u32);
+            let root = Subtree {
+                recs: &mut recs,
+                nodes: &mut nodes,
+                base: 0,
+                first_leaf: 0,
+                depth: 0,
+                verts: all,
+            };
+            // No more threads than subtrees worth one.
+            let threads = threads.clamp(1, 1 + n / GRAIN);
+            if threads == 1 {
+                let mut scratch = Scratch::new(in_verts.len())?;
+                build_subtree(&input, &mut scratch, root, None)?;
+            } else {
+                Pool::run(
+                    threads,
+                    root,
+                    |scratch, sub, pool| build_subtree(&input, scratch, sub, Some(pool)),
+                    || Scratch::new(in_verts.len()),
+                )?;
             }
-            nodes[ni] = node;
         }
-        drop(local);
-        drop(keys);
 
-        // The ids in leaf order.
+        // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
+        // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
+        // gives, as the hierarchy's triangles of a subtree are then near each other).
         let mut ids: Vec<i32> = Vec::new();
         ids.try_reserve_exact(n).map_err(oom)?;
-        ids.extend(added.iter().map(|&k| given_ids[k as usize]));
+        ids.extend(recs.iter().map(|r| given_ids[r.added as usize]));
         drop(given_ids);
-
-        let (verts, faces) = share_vertices(&corners)?;
+        let mut added: Vec<u32> = Vec::new();
+        added.try_reserve_exact(n).map_err(oom)?;
+        added.extend(recs.iter().map(|r| r.added));
+        let mut remap: Vec<u32> = Vec::new();
+        remap.try_reserve_exact(in_verts.len()).map_err(oom)?;
+        remap.resize(in_verts.len(), u32::MAX);
+        let mut verts: Vec<Vec3> = Vec::new();
+        verts.try_reserve_exact(in_verts.len()).map_err(oom)?;
+        let mut faces: Vec<[u32; 3]> = Vec::new();
+        faces.try_reserve_exact(n).map_err(oom)?;
+        for r in &recs {
+            faces.push(r.face.map(|v| {
+                let slot = &mut remap[v as usize];
+                if *slot == u32::MAX {
+                    *slot = verts.len() as u32;
+                    verts.push(in_verts[v as usize]);
+                }
+                *slot
+            }));
+        }
+        drop(recs);
         let inner = Bvh::inner_scale(&nodes);
         Ok(Bvh::assemble(
             nodes, verts, faces, ids, added, collision, inner,
@@ -112,23 +208,191 @@ impl Bvh {
     }
 }
 
+/// Builds `sub`'s nodes, depth first; `pool` (if any) may take a child's subtree to build on
+/// another thread. Each node's volumes and split depend only on its triangles' records, in their
+/// order, and on its vertex list, so the hierarchy does not depend on what the pool takes.
+fn build_subtree<'a>(
+    input: &Input,
+    scratch: &mut Scratch,
+    sub: Subtree<'a>,
+    pool: Option<&Pool<Subtree<'a>>>,
+) -> Result<(), Error> {
+    let oom = |_| Error::ModelOutOfMemory;
+    // The subtree's vertex lists go on the scratch stack: room for the root's, and for every
+    // node's along a path (each at most three per triangle below it, a geometric series).
+    let bottom = scratch.lists.len();
+    let m = sub.recs.len();
+    scratch
+        .lists
+        .try_reserve(sub.verts.len() + 6 * m + 64)
+        .map_err(oom)?;
+    scratch.lists.extend_from_slice(&sub.verts);
+    drop(sub.verts);
+    let r = node(
+        input,
+        scratch,
+        sub.recs,
+        sub.nodes,
+        sub.base,
+        sub.first_leaf,
+        sub.depth,
+        bottom,
+        pool,
+    );
+    scratch.lists.truncate(bottom);
+    r
+}
+
+/// Builds the node of triangles `recs` (at least two), whose distinct vertices are
+/// `scratch.lists[list..]`, into `nodes[0]` (its index `base`), and the subtrees below it into
+/// the rest of `nodes`.
+#[allow(clippy::too_many_arguments)]
+fn node<'a>(
+    input: &Input,
+    scratch: &mut Scratch,
+    recs: &'a mut [Record],
+    nodes: &'a mut [Node],
+    base: usize,
+    first_leaf: usize,
+    depth: usize,
+    list: usize,
+    pool: Option<&Pool<Subtree<'a>>>,
+) -> Result<(), Error> {
+    let m = recs.len();
+    debug_assert!(m >= 2 && nodes.len() == m - 1);
+    let a = axes_of(&covariance(m, |i| recs[i].moments));
+    // The frame exactly as the node will give it back.
+    let axes = frame_from(&a.column(0).into(), &a.column(1).into());
+    scratch.points.clear();
+    scratch.points.extend(
+        scratch.lists[list..]
+            .iter()
+            .map(|&v| input.verts[v as usize]),
+    );
+    let (ssv, obb) = fit_volumes(
+        input.volume,
+        &axes,
+        &scratch.points,
+        input.scale,
+        &mut scratch.local,
+    );
+    let axis: Vec3 = axes.column(0).into();
+    scratch.keys.clear();
+    scratch
+        .keys
+        .extend(recs.iter().map(|r| r.moments.centroid.dot(&axis)));
+    let mid = split(recs, &mut scratch.keys, depth >= MEAN_SPLIT_MAX_DEPTH);
+    let (this, below) = nodes.split_first_mut().expect("a node for every split");
+    *this = Node::new(&ssv, &obb);
+    let (left_recs, right_recs) = recs.split_at_mut(mid);
+    let (left_nodes, right_nodes) = below.split_at_mut(mid - 1);
+    let children = [
+        (left_recs, left_nodes, base + 1, first_leaf),
+        (right_recs, right_nodes, base + mid, first_leaf + mid),
+    ];
+    for (k, (crecs, cnodes, cbase, cleaf)) in children.into_iter().enumerate() {
+        if crecs.len() == 1 {
+            // Leaves point at the triangle's slot in leaf order.
+            this.children[k] = NodeRef::leaf(cleaf);
+            continue;
+        }
+        this.children[k] = NodeRef::inner(cbase);
+        // The child's distinct vertices, in the order its triangles first give them.
+        let start = scratch.lists.len();
+        let tag = cbase as u32;
+        for r in crecs.iter() {
+            for &v in &r.face {
+                let stamp = &mut scratch.stamps[v as usize];
+                if *stamp != tag {
+                    *stamp = tag;
+                    scratch.lists.push(v);
+                }
+            }
+        }
+        let sub = Subtree {
+            recs: crecs,
+            nodes: cnodes,
+            base: cbase,
+            first_leaf: cleaf,
+            depth: depth + 1,
+            verts: Vec::new(),
+        };
+        match offer_subtree(scratch, start, sub, pool)? {
+            None => {}
+            Some(sub) => {
+                node(
+                    input,
+                    scratch,
+                    sub.recs,
+                    sub.nodes,
+                    sub.base,
+                    sub.first_leaf,
+                    sub.depth,
+                    start,
+                    pool,
+                )?;
+            }
+        }
+        scratch.lists.truncate(start);
+    }
+    Ok(())
+}
+
+/// Offers `sub` (its vertices `scratch.lists[start..]`) to the pool: `None` if taken, else the
+/// subtree back, to build here. Only subtrees worth a thread are offered, and only while a thread
+/// is idle (their vertex list is then copied, once per subtree handed over).
+fn offer_subtree<'a>(
+    scratch: &Scratch,
+    start: usize,
+    mut sub: Subtree<'a>,
+    pool: Option<&Pool<Subtree<'a>>>,
+) -> Result<Option<Subtree<'a>>, Error> {
+    let Some(pool) = pool else {
+        return Ok(Some(sub));
+    };
+    if sub.recs.len() < GRAIN || !pool.wants() {
+        return Ok(Some(sub));
+    }
+    let list = &scratch.lists[start..];
+    let mut verts = Vec::new();
+    verts
+        .try_reserve_exact(list.len())
+        .map_err(|_| Error::ModelOutOfMemory)?;
+    verts.extend_from_slice(list);
+    sub.verts = verts;
+    Ok(pool.offer(sub).map(|mut sub| {
+        sub.verts = Vec::new();
+        sub
+    }))
+}
+
 /// The distinct vertices of the triangles (equal coordinates, bit for bit, stored once, in the order
 /// they first appear) and each triangle's vertex indices. Finds repeats with a hash table of
 /// corners, kept at most half full: expected O(n).
 pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
-    let oom = |_| Error::ModelOutOfMemory;
     let corners = tris.as_flattened();
+    share_corners(tris.len(), |c| &corners[c])
+}
+
+/// [`share_vertices`] of the `count` triangles whose corner `c` (`3 t + k`: corner `k` of
+/// triangle `t`) is `corner(c)`.
+fn share_corners<'a>(
+    count: usize,
+    corner: impl Fn(usize) -> &'a Vec3,
+) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
+    let oom = |_| Error::ModelOutOfMemory;
     let bits = |c: usize| {
-        let v = &corners[c];
+        let v = corner(c);
         [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
     };
+    let tris_len = count;
     let mut faces: Vec<[u32; 3]> = Vec::new();
-    faces.try_reserve_exact(tris.len()).map_err(oom)?;
-    faces.resize(tris.len(), [0; 3]);
+    faces.try_reserve_exact(tris_len).map_err(oom)?;
+    faces.resize(tris_len, [0; 3]);
     let face_ids = faces.as_flattened_mut();
     // Slots hold a corner index plus one (0: empty); that corner's vertex is the entry's. Sized
     // for a mesh's usual one vertex per two triangles, doubled whenever it gets half full.
-    let mut shift = 64 - (tris.len().max(8)).next_power_of_two().trailing_zeros();
+    let mut shift = 64 - (tris_len.max(8)).next_power_of_two().trailing_zeros();
     let mut table: Vec<u32> = Vec::new();
     let grow = |table: &mut Vec<u32>, shift: u32| -> Result<(), Error> {
         let size = 1usize << (64 - shift);
@@ -147,7 +411,7 @@ pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>),
     };
     grow(&mut table, shift)?;
     let mut distinct = 0usize;
-    for c in 0..corners.len() {
+    for c in 0..3 * tris_len {
         let key = bits(c);
         let mask = table.len() - 1;
         let mut i = slot(&key, shift);
@@ -176,7 +440,7 @@ pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>),
     for (c, &v) in face_ids.iter().enumerate() {
         // A vertex's first corner is the one that gave it the next index.
         if v as usize == verts.len() {
-            verts.push(corners[c]);
+            verts.push(*corner(c));
         }
     }
     Ok((verts, faces))
@@ -192,25 +456,6 @@ fn slot(key: &[u64; 3], shift: u32) -> usize {
         .rotate_left(29)
         ^ key[2];
     (h.wrapping_mul(K) >> shift) as usize
-}
-
-/// The covariance of a point set (not empty), about its mean. Sums the six distinct products only:
-/// `d[i] * d[j]` and `d[j] * d[i]` are the same number, so the matrix is the full sum's, bit for bit.
-fn covariance(points: &[Vec3]) -> Mat3 {
-    let n = points.len() as f64;
-    let mean = points.iter().fold(Vec3::zeros(), |a, p| a + p) / n;
-    let [mut xx, mut xy, mut xz, mut yy, mut yz, mut zz] = [0.0f64; 6];
-    for p in points {
-        let d = p - mean;
-        xx += d.x * d.x;
-        xy += d.x * d.y;
-        xz += d.x * d.z;
-        yy += d.y * d.y;
-        yz += d.y * d.z;
-        zz += d.z * d.z;
-    }
-    let (xx, xy, xz, yy, yz, zz) = (xx / n, xy / n, xz / n, yy / n, yz / n, zz / n);
-    Mat3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
 }
 
 fn placeholder() -> Node {
@@ -230,28 +475,25 @@ fn placeholder() -> Node {
     )
 }
 
-/// A triangle's split key: its centroid's projection on the splitting axis.
-#[inline(always)]
-fn split_key(t: &Tri, axis: &Vec3) -> f64 {
-    ((t[0] + t[1] + t[2]) / 3.0).dot(axis)
-}
-
-/// Partitions the triangles `tris` (at least two; their insertion indices `added` and split `keys`
-/// alongside) and
-/// returns how many go to the first child (never 0 nor all): those whose centroid projects below
-/// the mean, or the lower half by projection when the mean splits nothing off or `median` is asked
-/// for.
-fn split(tris: &mut [Tri], added: &mut [u32], keys: &mut [f64], median: bool) -> usize {
-    let count = tris.len();
+/// Partitions the triangles `recs` (at least two; their split `keys` alongside) and returns how
+/// many go to the first child (never 0 nor all): those whose centroid projects below the mean or
+/// those above it, whichever are more, or the lower half by projection when the mean splits
+/// nothing off or `median` is asked for.
+fn split(recs: &mut [Record], keys: &mut [f64], median: bool) -> usize {
+    let count = recs.len();
     debug_assert_eq!(keys.len(), count);
     if !median {
         let mean = keys.iter().sum::<f64>() / count as f64;
+        // The side with more triangles goes first (becomes the first child): searches that stop
+        // early or prune by a bound (collide first, distance, tolerance) meet it first, and do
+        // fewer tests for it (BENCHMARKS.md, "Build speed").
+        let below = keys.iter().filter(|&&k| k < mean).count();
+        let upper_first = 2 * below < count;
         let mut left = 0;
         for i in 0..count {
-            if keys[i] < mean {
+            if (keys[i] < mean) != upper_first {
                 if i != left {
-                    tris.swap(i, left);
-                    added.swap(i, left);
+                    recs.swap(i, left);
                     keys.swap(i, left);
                 }
                 left += 1;
@@ -263,14 +505,13 @@ fn split(tris: &mut [Tri], added: &mut [u32], keys: &mut [f64], median: bool) ->
         // Nothing moved: every triangle went to the same side, each swapped with itself.
     }
     // Halves by projection. Sort keys alongside the positions so equal projections split evenly
-    // too, then move the triangles and their insertion indices to the positions' new order.
+    // too, then move the records to the positions' new order.
     let mut pairs: Vec<(f64, u32)> = keys.iter().copied().zip(0..count as u32).collect();
     let mid = count / 2;
     pairs.select_nth_unstable_by(mid, |a, b| a.0.total_cmp(&b.0));
-    let (old_tris, old_added) = (tris.to_vec(), added.to_vec());
+    let old = recs.to_vec();
     for (k, &(_, i)) in pairs.iter().enumerate() {
-        tris[k] = old_tris[i as usize];
-        added[k] = old_added[i as usize];
+        recs[k] = old[i as usize];
     }
     mid
 }
@@ -279,37 +520,29 @@ fn split(tris: &mut [Tri], added: &mut [u32], keys: &mut [f64], median: bool) ->
 /// model's kind (for the hybrid the kind that suits the points) and the box. The same as
 /// [`Ssv::fit`] and [`Obb::fit`], bit for bit, for less work: the points are taken into the frame
 /// once for all the fits (into `local`, scratch), and both volumes are covered in one pass that
-/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`. While the
-/// triangles are at hand, puts their split keys (see [`split_key`]) into `keys`.
+/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
 fn fit_volumes(
     volume: VolumeKind,
     axes: &Mat3,
-    tris: &[Tri],
+    points: &[Vec3],
     scale: f64,
     local: &mut Vec<Vec3>,
-    keys: &mut Vec<f64>,
 ) -> (Ssv, Obb) {
-    let points = tris.as_flattened();
-    let axis: Vec3 = axes.column(0).into();
     let first = axes.tr_mul(&points[0]);
     let (mut lo, mut hi) = (first, first);
     local.clear();
-    keys.clear();
-    for t in tris {
-        keys.push(split_key(t, &axis));
-        for p in t {
-            let q = axes.tr_mul(p);
-            // Plain comparisons rather than `f64::min`: no NaN here to handle.
-            for k in 0..3 {
-                if q[k] < lo[k] {
-                    lo[k] = q[k];
-                }
-                if q[k] > hi[k] {
-                    hi[k] = q[k];
-                }
+    for p in points {
+        let q = axes.tr_mul(p);
+        // Plain comparisons rather than `f64::min`: no NaN here to handle.
+        for k in 0..3 {
+            if q[k] < lo[k] {
+                lo[k] = q[k];
             }
-            local.push(q);
+            if q[k] > hi[k] {
+                hi[k] = q[k];
+            }
         }
+        local.push(q);
     }
     let local = &local[..];
     let at = |i: usize| local[i];
@@ -413,31 +646,9 @@ fn hybrid_by_volume(
     best
 }
 
-/// Principal axes of a point set: eigenvectors of its covariance, as orthonormal right-handed
-/// columns in decreasing order of eigenvalue. Identity when the covariance gives no usable frame.
-pub(crate) fn principal_axes(points: &[Vec3]) -> Mat3 {
-    let cov = covariance(points);
-    if !cov.iter().all(|v| v.is_finite()) {
-        return Mat3::identity();
-    }
-    let eig = SymmetricEigen::new(cov);
-    let mut idx = [0usize, 1, 2];
-    idx.sort_by(|&a, &b| eig.eigenvalues[b].total_cmp(&eig.eigenvalues[a]));
-    let v0: Vec3 = eig.eigenvectors.column(idx[0]).into();
-    let v1: Vec3 = eig.eigenvectors.column(idx[1]).into();
-    let a0 = v0.normalize();
-    let a1 = (v1 - a0 * a0.dot(&v1)).normalize();
-    let a2 = a0.cross(&a1);
-    let axes = Mat3::from_columns(&[a0, a1, a2]);
-    if axes.iter().all(|v| v.is_finite()) && (a2.norm() - 1.0).abs() < 1e-6 {
-        axes
-    } else {
-        Mat3::identity()
-    }
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::principal_axes::principal_axes;
     use super::*;
     use crate::bounding_volume::BoundingVolume;
     use crate::test_rng::Lcg;
@@ -591,7 +802,6 @@ mod tests {
         // `Ssv::fit` and `Obb::fit`, on clouds, flat and duplicated sets, far from the origin.
         let mut s = Lcg(5);
         let mut local = Vec::new();
-        let mut keys = Vec::new();
         for case in 0..400 {
             let n = 1 + case % 37;
             let (scale, offset) = [(1.0, 0.0), (1e-3, 7.0), (1e4, -3e6), (1.0, 1e9)][case % 4];
@@ -614,12 +824,9 @@ mod tests {
                 (VolumeKind::Lss, SsvKind::Line),
                 (VolumeKind::Rss, SsvKind::Rect),
             ] {
-                let (ssv, obb) = fit_volumes(volume, &axes, &tris, scale, &mut local, &mut keys);
+                let (ssv, obb) = fit_volumes(volume, &axes, pts, scale, &mut local);
                 assert_eq!(ssv, Ssv::fit(kind, &axes, pts), "case {case} {kind:?}");
                 assert_eq!(obb, Obb::fit(&axes, pts), "case {case}");
-                let axis: Vec3 = axes.column(0).into();
-                let want: Vec<f64> = tris.iter().map(|t| split_key(t, &axis)).collect();
-                assert_eq!(keys, want);
             }
         }
     }
@@ -642,5 +849,130 @@ mod tests {
         // Coordinates whose squares overflow fall back to the identity rather than NaN.
         let huge = principal_axes(&[Vec3::new(1e200, 0.0, 0.0), Vec3::new(-1e200, 1.0, 0.0)]);
         assert_eq!(huge, Mat3::identity());
+    }
+
+    /// A bumpy closed mesh of `2 * lat * lon` triangles (shared vertices, as a mesh has them).
+    fn bumpy_sphere(lat: usize, lon: usize) -> Vec<(Tri, i32)> {
+        let point = |i: usize, j: usize| {
+            let th = std::f64::consts::PI * i as f64 / lat as f64;
+            let ph = 2.0 * std::f64::consts::PI * (j % lon) as f64 / lon as f64;
+            let r = 1.0 + 0.1 * (5.0 * th).sin() * (7.0 * ph).cos();
+            Vec3::new(
+                r * th.sin() * ph.cos(),
+                r * th.sin() * ph.sin(),
+                r * th.cos(),
+            )
+        };
+        let mut tris = Vec::new();
+        for i in 0..lat {
+            for j in 0..lon {
+                let (a, b, c, d) = (
+                    point(i, j),
+                    point(i + 1, j),
+                    point(i + 1, j + 1),
+                    point(i, j + 1),
+                );
+                let id = tris.len() as i32;
+                tris.push(([a, b, c], id));
+                tris.push(([a, c, d], id + 1));
+            }
+        }
+        tris
+    }
+
+    /// Every array of the two hierarchies equal, bit for bit.
+    fn assert_same(a: &Bvh, b: &Bvh, what: &str) {
+        assert_eq!(a.nodes.len(), b.nodes.len(), "{what}");
+        for i in 0..a.nodes.len() {
+            let r = NodeRef::inner(i);
+            assert_eq!(a.ssv(r), b.ssv(r), "{what}: node {i}");
+            assert_eq!(a.obb(r), b.obb(r), "{what}: node {i}");
+            assert_eq!(a.children(r), b.children(r), "{what}: node {i}");
+        }
+        assert_eq!(a.verts, b.verts, "{what}");
+        assert_eq!(a.faces, b.faces, "{what}");
+        assert_eq!(a.ids, b.ids, "{what}");
+        assert_eq!(a.added, b.added, "{what}");
+    }
+
+    #[test]
+    fn threads_build_the_same_hierarchy() {
+        // Big enough for several subtrees to be handed over (GRAIN triangles each); every volume
+        // kind; and a soup (no shared vertices) with duplicated triangles.
+        let mesh = bumpy_sphere(60, 150);
+        assert!(mesh.len() > 4 * GRAIN);
+        let mut s = Lcg(3);
+        let mut soup: Vec<(Tri, i32)> = (0..3 * GRAIN)
+            .map(|i| {
+                let c = Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)) * 20.0;
+                let mut v = || c + Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s));
+                ([v(), v(), v()], i as i32)
+            })
+            .collect();
+        soup.extend_from_within(..GRAIN);
+        for (tris, volumes) in [
+            (
+                &mesh,
+                &[
+                    VolumeKind::Rss,
+                    VolumeKind::Pss,
+                    VolumeKind::Lss,
+                    VolumeKind::Hybrid,
+                ][..],
+            ),
+            (&soup, &[VolumeKind::Rss][..]),
+        ] {
+            for &v in volumes {
+                let one = Bvh::build_threads(tris.clone(), v, CollisionVolume::Obb, 1).unwrap();
+                for threads in [2, 3, 8] {
+                    let many =
+                        Bvh::build_threads(tris.clone(), v, CollisionVolume::Obb, threads).unwrap();
+                    assert_same(&one, &many, &format!("{v:?}, {threads} threads"));
+                }
+                if v == VolumeKind::Rss {
+                    check_containment(&one);
+                    check_insertion_order(&one, tris);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nodes_are_in_pre_order() {
+        // Each node's first child follows it, and its second child follows the first's subtree;
+        // on a mean split the first child has at least as many triangles as the second.
+        let b = Bvh::build(bumpy_sphere(10, 20), VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        fn count(b: &Bvh, r: NodeRef) -> usize {
+            if r.is_leaf() {
+                1
+            } else {
+                b.children(r).iter().map(|&c| count(b, c)).sum()
+            }
+        }
+        fn walk(b: &Bvh, r: NodeRef, next: &mut usize) {
+            if r.is_leaf() {
+                return;
+            }
+            assert_eq!(r, NodeRef::inner(*next));
+            *next += 1;
+            let [c0, c1] = b.children(r);
+            assert!(count(b, c0) >= count(b, c1));
+            walk(b, c0, next);
+            walk(b, c1, next);
+        }
+        let mut next = 0;
+        walk(&b, b.root(), &mut next);
+        assert_eq!(next, b.num_inner());
+    }
+
+    #[test]
+    fn vertices_are_shared_in_leaf_order() {
+        // The build's vertex arrays are `share_vertices` of its triangles in leaf order.
+        let tris = bumpy_sphere(12, 30);
+        let b = Bvh::build(tris, VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        let leaf: Vec<Tri> = (0..b.num_tris()).map(|t| b.tri(t)).collect();
+        let (verts, faces) = share_vertices(&leaf).unwrap();
+        assert_eq!(verts, b.verts);
+        assert_eq!(faces, b.faces);
     }
 }

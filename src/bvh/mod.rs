@@ -15,7 +15,9 @@
 
 mod boundary;
 mod build;
+mod build_threads;
 mod pqp_view;
+mod principal_axes;
 mod ray_tree;
 mod refit;
 mod saved;

@@ -7,7 +7,7 @@ use super::{
 };
 use crate::error::Error;
 use crate::model::{BuildState, CollisionVolume, Model, VolumeKind};
-use std::ffi::c_int;
+use std::ffi::{c_int, c_uint};
 
 /// Volume choice (pqp_model_set_volume): rectangle swept spheres, PQP's choice and the default.
 pub const PQP_BV_RSS: c_int = 0;
@@ -361,4 +361,23 @@ pub unsafe extern "C" fn pqp_model_is_built(m: *const pqp_model) -> c_int {
             || deref(m).map_or(0, |m| c_int::from(m.model.is_built())),
         )
     }
+}
+
+/// pqp_model_end on up to `threads` threads: builds the same hierarchy, bit for bit, whatever the
+/// number (so every query answers the same), in less time on a machine with several cores.
+/// pqp_model_end (and PQP 1.3's EndModel through the C++ header) builds on the calling thread
+/// only; this is the opt-in.
+///
+/// @param m        the model.
+/// @param threads  how many threads may build (the calling thread among them): 0 for as many as
+///                 the machine has cores; 1 as pqp_model_end. Any value is valid: more than the
+///                 cores is allowed, and a small model (a few thousand triangles) is built on the
+///                 calling thread whatever the value.
+/// @return as pqp_model_end.
+/// Thread safety: must not run concurrently with any other call using m. The threads it starts
+/// have ended when it returns.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn pqp_model_end_threads(m: *mut pqp_model, threads: c_uint) -> c_int {
+    // SAFETY: every pointer argument is NULL or valid as the header requires of the caller.
+    unsafe { status(|| deref_mut(m)?.model.end_threads(threads as usize)) }
 }

@@ -1,0 +1,57 @@
+//! Build time of the benchmark spheres (40,000 and 1,000,000 triangles), and a fingerprint of each
+//! built model (FNV-1a of its saved bytes: equal fingerprints, the same hierarchy bit for bit).
+//!
+//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m]`
+
+mod workloads;
+
+use pqp::Model;
+use std::time::Instant;
+use workloads::{Tri, median, uv_sphere};
+
+fn fingerprint(m: &Model) -> u64 {
+    let bytes = m.to_bytes().expect("saved bytes");
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
+    })
+}
+
+fn build(tris: &[Tri]) -> Model {
+    let mut m = Model::new();
+    m.begin(tris.len()).unwrap();
+    for &(a, b, c, id) in tris {
+        m.add_triangle(a, b, c, id).unwrap();
+    }
+    m.end().unwrap();
+    m
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let arg = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1).cloned())
+    };
+    let rounds: usize = arg("--rounds").map_or(5, |r| r.parse().expect("--rounds N"));
+    let only = arg("--only");
+    for (name, lat, lon) in [("40k", 101, 200), ("1m", 501, 1000)] {
+        if only.as_deref().is_some_and(|o| o != name) {
+            continue;
+        }
+        let tris = uv_sphere(1.0, lat, lon);
+        let mut times = Vec::new();
+        let mut print = 0;
+        for _ in 0..rounds {
+            let t = Instant::now();
+            let m = build(&tris);
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            print = fingerprint(&m);
+        }
+        println!(
+            "{name}: {} triangles, build {:.2} ms (median of {rounds}), tree {print:016x}",
+            tris.len(),
+            median(times)
+        );
+    }
+}

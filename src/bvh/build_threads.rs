@@ -1,0 +1,133 @@
+//! The build on several threads: subtrees handed to idle threads as the build splits them.
+//!
+//! Scoped std threads around a shared stack of subtrees (a mutex and a condition variable): a
+//! build runs once per model, its tasks are a few dozen subtrees, and a thread pool crate would add
+//! a dependency for nothing the build uses. Every builder, on finding a child's subtree big enough
+//! (at least [`GRAIN`] triangles) while some thread is idle, hands it over and goes on with the
+//! other child. What a subtree's nodes are depends only on its triangles, never on which thread
+//! builds it (see `build.rs`), so the hierarchy is the same whatever the thread count.
+
+use crate::error::Error;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Condvar, Mutex, MutexGuard};
+
+/// Fewest triangles of a subtree worth handing to another thread (a few hundred microseconds of
+/// work); smaller ones are built where they were split.
+pub(crate) const GRAIN: usize = 4096;
+
+/// Subtrees (tasks `T`) waiting for a thread, how many threads are building one, and the first
+/// error.
+struct State<T> {
+    queue: Vec<T>,
+    busy: usize,
+    error: Option<Error>,
+}
+
+/// The shared stack of subtrees (`T`: what the builder needs of one) of one build.
+pub(super) struct Pool<T> {
+    state: Mutex<State<T>>,
+    wake: Condvar,
+    threads: usize,
+}
+
+impl<T: Send> Pool<T> {
+    /// Builds `root` on `threads` threads (this one and `threads - 1` scoped ones; fewer if the
+    /// system will not start them): `work` builds a subtree with a thread's scratch (made by
+    /// `scratch` on the thread's first subtree), handing subtrees to the pool as it goes. The first
+    /// error of any thread, once every thread has stopped.
+    pub fn run<S>(
+        threads: usize,
+        root: T,
+        work: impl Fn(&mut S, T, &Pool<T>) -> Result<(), Error> + Sync,
+        scratch: impl Fn() -> Result<S, Error> + Sync,
+    ) -> Result<(), Error> {
+        let pool = Pool {
+            state: Mutex::new(State {
+                queue: vec![root],
+                busy: 0,
+                error: None,
+            }),
+            wake: Condvar::new(),
+            threads,
+        };
+        std::thread::scope(|s| {
+            for _ in 1..threads {
+                // A thread that cannot be started leaves its share to the others.
+                let _ =
+                    std::thread::Builder::new().spawn_scoped(s, || pool.worker(&work, &scratch));
+            }
+            pool.worker(&work, &scratch);
+        });
+        match pool.lock().error.take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    fn lock(&self) -> MutexGuard<'_, State<T>> {
+        // No code panics while holding the lock; should one, the state is still consistent.
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// One thread's loop: takes subtrees until none is left and no thread is building one (so no
+    /// more can come), or an error stops the build.
+    fn worker<S>(
+        &self,
+        work: &(impl Fn(&mut S, T, &Pool<T>) -> Result<(), Error> + Sync),
+        scratch: &(impl Fn() -> Result<S, Error> + Sync),
+    ) {
+        let mut mine: Option<S> = None;
+        let mut st = self.lock();
+        loop {
+            if st.error.is_some() {
+                return;
+            }
+            if let Some(task) = st.queue.pop() {
+                st.busy += 1;
+                drop(st);
+                // A panic (none is expected) becomes an error rather than a thread that never
+                // reports back, which would leave the others waiting.
+                let result = catch_unwind(AssertUnwindSafe(|| {
+                    let s = match &mut mine {
+                        Some(s) => s,
+                        empty => empty.insert(scratch()?),
+                    };
+                    work(s, task, self)
+                }))
+                .unwrap_or(Err(Error::Internal));
+                st = self.lock();
+                st.busy -= 1;
+                if let Err(e) = result {
+                    st.error.get_or_insert(e);
+                }
+                if st.error.is_some() || (st.busy == 0 && st.queue.is_empty()) {
+                    self.wake.notify_all();
+                }
+                continue;
+            }
+            if st.busy == 0 {
+                self.wake.notify_all();
+                return;
+            }
+            st = self.wake.wait(st).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
+    /// Whether a subtree handed over now would likely find an idle thread.
+    pub fn wants(&self) -> bool {
+        let st = self.lock();
+        st.error.is_none() && st.queue.len() + st.busy < self.threads
+    }
+
+    /// Takes `sub` for an idle thread (`None`), or gives it back to build here.
+    pub fn offer(&self, sub: T) -> Option<T> {
+        let mut st = self.lock();
+        if st.error.is_none() && st.queue.len() + st.busy < self.threads {
+            st.queue.push(sub);
+            self.wake.notify_one();
+            None
+        } else {
+            Some(sub)
+        }
+    }
+}
