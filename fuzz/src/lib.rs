@@ -2037,9 +2037,9 @@ pub fn more_queries(data: &[u8]) {
             point2: [0.0; 3],
         };
         let mut ct = blank;
-        for bad_tol in [0.0, -tol, f64::NAN] {
-            let rc = pqp_time_of_contact(
-                &mut ct,
+        let toc = |ct: &mut pqp_contact_time, tol: f64| {
+            pqp_time_of_contact(
+                ct,
                 r1p,
                 t1p,
                 r1b.as_ptr(),
@@ -2050,8 +2050,11 @@ pub fn more_queries(data: &[u8]) {
                 r2b.as_ptr(),
                 t2b.as_ptr(),
                 m2,
-                bad_tol,
-            );
+                tol,
+            )
+        };
+        for bad_tol in [0.0, -tol, f64::NAN] {
+            let rc = toc(&mut ct, bad_tol);
             assert_code(
                 "time_of_contact (bad tolerance)",
                 rc,
@@ -2059,20 +2062,7 @@ pub fn more_queries(data: &[u8]) {
             );
             assert_eq!(ct.contact, 7, "time_of_contact wrote on an error");
         }
-        let rc = pqp_time_of_contact(
-            &mut ct,
-            r1p,
-            t1p,
-            r1b.as_ptr(),
-            t1b.as_ptr(),
-            m1,
-            r2p,
-            t2p,
-            r2b.as_ptr(),
-            t2b.as_ptr(),
-            m2,
-            tol,
-        );
+        let rc = toc(&mut ct, tol);
         assert_code("time_of_contact", rc, &[PQP_OK]);
         let motions = (
             Motion::new(&r1, t1, &r1b, t1b),
