@@ -56,13 +56,11 @@ fn deserialize_inputs() {
     assert!(replay("deserialize", fuzz_checks::deserialize) >= 10);
 }
 
-/// Library bug found by the convex fuzz target: the hull of a valid tetrahedron whose coordinates
-/// mix 1e140 and 1e-140 fails with PQP_ERR_INTERNAL (documented: coordinates of any magnitude up to
-/// 1e150 are accepted; the answer should be a 4-vertex model). The fuzz target tolerates it
-/// (`known_bug_extreme_spread`) until it is fixed; then un-ignore this test and drop that
-/// exception.
+/// Found by the convex fuzz target: the hull of a valid tetrahedron whose coordinates mix 1e140
+/// and 1e-140 failed with PQP_ERR_INTERNAL (coordinates of any magnitude up to 1e150 are
+/// accepted): a face's area vector, taken after scaling the whole set to at most 1, underflowed
+/// to zero. Area vectors are now rescaled per face and fall back to exact integers.
 #[test]
-#[ignore = "library bug: pqp_convex_model_from_points gives PQP_ERR_INTERNAL (src/convex)"]
 fn hull_of_extreme_spread() {
     use pqp::capi::*;
     let pts = [
@@ -78,14 +76,12 @@ fn hull_of_extreme_spread() {
     unsafe { pqp_convex_model_destroy(m) };
 }
 
-/// The same library bug seen from the other side (fuzz regression `convex/hull-faces-refused`):
-/// the hull of five points mixing 1e140, 1e-140 and ordinary values comes back from
-/// pqp_convex_model_from_points as five vertices, but its own faces, fanned into triangles, are
-/// refused by pqp_convex_model_from_triangles (PQP_ERR_INVALID_CONVEX_MESH). Likely cause: the
-/// exact predicates' products of ~1e-140 coordinates underflow after scaling, so "exact" signs
-/// differ between the two paths. Un-ignore once fixed.
+/// The same bug seen from the other side (fuzz regression `convex/hull-faces-refused`): the hull
+/// of five points mixing 1e140, 1e-140 and ordinary values came back from
+/// pqp_convex_model_from_points as five vertices, but its own faces, fanned into triangles, were
+/// refused by pqp_convex_model_from_triangles (PQP_ERR_INVALID_CONVEX_MESH): a face's underflowed
+/// area vector chose a coordinate plane the face projects onto as a segment.
 #[test]
-#[ignore = "library bug: a hull's own faces are refused at extreme spreads (src/convex)"]
 fn hull_faces_of_extreme_spread() {
     use pqp::capi::*;
     let xyz = [

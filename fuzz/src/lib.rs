@@ -986,17 +986,6 @@ unsafe fn check_convex_model(m: *const pqp_convex_model) {
     );
 }
 
-/// Whether a point set's non-zero coordinates span more than 100 orders of magnitude: where
-/// `pqp_convex_model_from_points` (and `_from_triangles`) is known to fail with `PQP_ERR_INTERNAL` (a library bug, kept by
-/// an ignored test in tests/fuzz_regressions.rs; drop this exception once it is fixed).
-pub fn known_bug_extreme_spread(coords: &[f64]) -> bool {
-    let nz = coords.iter().filter(|x| **x != 0.0).map(|x| x.abs());
-    let (lo, hi) = nz.fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
-        (lo.min(x), hi.max(x))
-    });
-    hi > lo * 1e100
-}
-
 /// Convex models and their queries (see the crate documentation).
 pub fn convex(data: &[u8]) {
     let mut input = Bytes::new(data);
@@ -1023,14 +1012,6 @@ pub fn convex(data: &[u8]) {
                     assert_code("from_points (bad)", rc, &[PQP_ERR_NONFINITE_COORDINATE]);
                 } else if n < 4 {
                     assert_code("from_points (< 4)", rc, &[PQP_ERR_DEGENERATE_POINTS]);
-                } else if known_bug_extreme_spread(&pts) {
-                    // Known library bug (tests/fuzz_regressions.rs, hull_of_extreme_spread):
-                    // PQP_ERR_INTERNAL for some point sets mixing 1e140 and 1e-140.
-                    assert_code(
-                        "from_points",
-                        rc,
-                        &[PQP_OK, PQP_ERR_DEGENERATE_POINTS, PQP_ERR_INTERNAL],
-                    );
                 } else {
                     assert_code("from_points", rc, &[PQP_OK, PQP_ERR_DEGENERATE_POINTS]);
                 }
@@ -1092,15 +1073,7 @@ pub fn convex(data: &[u8]) {
                     idx.as_ptr(),
                     (idx.len() / 3) as c_int,
                 );
-                // The known bug of known_bug_extreme_spread also hits meshes: PQP_ERR_INTERNAL
-                // (regression from-triangles-internal: a hull vertex moved to 1e100 beside
-                // 1e-140s), and a hull's own faces refused as not convex (regression
-                // hull-faces-refused, test hull_faces_of_extreme_spread).
-                let mut allowed = expect.to_vec();
-                if known_bug_extreme_spread(&xyz) {
-                    allowed.extend([PQP_ERR_INTERNAL, PQP_ERR_INVALID_CONVEX_MESH]);
-                }
-                assert_code("from_triangles", rc, &allowed);
+                assert_code("from_triangles", rc, expect);
             }
             if !out.is_null() {
                 check_convex_model(out);

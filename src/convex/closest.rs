@@ -36,9 +36,18 @@ pub(crate) fn point_segment_param(p: &Vec3, a: &Vec3, b: &Vec3) -> f64 {
 /// because the function is convex and separable along these one-dimensional slices. Parallel (or
 /// nearly) segments take the middle of their overlap, a pair at the common minimal distance.
 pub(crate) fn segment_segment_params(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3) -> (f64, f64) {
-    let d1 = p1 - p0;
-    let d2 = q1 - q0;
-    let r = p0 - q0;
+    // The parameters do not change when the whole picture is scaled; scale by a power of two
+    // (exact) so that the longer segment's largest coordinate is about 1. Otherwise `a * e` (the
+    // fourth power of the lengths) overflows for segments longer than about 1e77. The offset `r`
+    // caps the factor, so that it stays far from overflow itself.
+    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
+    let len = d1.amax().max(d2.amax());
+    if len == 0.0 {
+        return (0.0, 0.0);
+    }
+    let k = (-len.log2().floor()).min(500.0 - r.amax().log2().ceil());
+    let scale = 2f64.powi((k as i32).clamp(-1000, 1000));
+    let (d1, d2, r) = (d1 * scale, d2 * scale, r * scale);
     let a = d1.norm_squared();
     let e = d2.norm_squared();
     if a <= 0.0 && e <= 0.0 {
@@ -120,5 +129,36 @@ mod tests {
             let b = brute(&p0, &p1, &q0, &q1);
             assert!(d <= b + 1e-12 && d >= b - 1e-2, "{d} vs {b}");
         }
+    }
+
+    #[test]
+    fn segment_pairs_at_every_scale() {
+        // The same crossing picture scaled from 1e-150 to 1e150: (a * e) would overflow past 1e77
+        // and underflow below 1e-77 without the rescaling.
+        for k in -15..=15 {
+            let m = 10f64.powi(10 * k);
+            let v = |x: f64, y: f64, z: f64| Vec3::new(x * m, y * m, z * m);
+            let (s, t) = segment_segment_params(
+                &v(-1.0, 0.0, 0.0),
+                &v(3.0, 0.0, 0.0),
+                &v(0.0, -3.0, 1.0),
+                &v(0.0, 1.0, 1.0),
+            );
+            assert!(
+                (s - 0.25).abs() < 1e-12 && (t - 0.75).abs() < 1e-12,
+                "{m}: {s} {t}"
+            );
+        }
+        // A long needle against a short one far away: the offset caps the factor.
+        let (s, t) = segment_segment_params(
+            &Vec3::new(-1e150, 0.0, 0.0),
+            &Vec3::new(1e150, 0.0, 0.0),
+            &Vec3::new(0.0, 1e-150, 1e150),
+            &Vec3::new(0.0, 2e-150, 1e150),
+        );
+        assert!(
+            (s - 0.5).abs() < 1e-12 && (0.0..=1.0).contains(&t),
+            "{s} {t}"
+        );
     }
 }

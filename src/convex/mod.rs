@@ -280,14 +280,18 @@ pub fn convex_penetration(
 ) -> Result<ConvexPenetration, Error> {
     let d = convex_distance(m1, pose1, m2, pose2, cache)?;
     if !d.intersecting {
-        let w1 = pose1.transform_point(&d.p1);
-        let w2 = pose2.transform_point(&d.p2);
-        let v = w2 - w1;
-        let n = v.norm();
+        // The direction is taken in model 1's frame, as V-Clip measured the distance: world
+        // coordinates can round two closest points far nearer than the models' size together.
+        let v = pose1.rotation * (RelPose::between(pose1, pose2).apply(&d.p2) - d.p1);
+        let normal = if d.distance > 0.0 {
+            model::unit(&v)
+        } else {
+            Vec3::zeros()
+        };
         return Ok(ConvexPenetration {
             intersecting: false,
             depth: 0.0,
-            normal: if n > 0.0 { v / n } else { Vec3::zeros() },
+            normal,
             p1: d.p1,
             p2: d.p2,
             closest: d,

@@ -121,6 +121,14 @@ impl BigInt {
         .trimmed()
     }
 
+    /// The number of bits of the magnitude: `|self|` lies in `[2^(n-1), 2^n)`; 0 for zero.
+    pub fn bit_len(&self) -> i64 {
+        match self.mag.last() {
+            None => 0,
+            Some(&top) => 64 * (self.mag.len() as i64 - 1) + 64 - i64::from(top.leading_zeros()),
+        }
+    }
+
     /// `self * 2^k` rounded to a double (within an ulp or so) with the exact sign: a nonzero
     /// value beyond the doubles' range saturates at the largest finite or least normal magnitude.
     pub fn to_f64_scaled(&self, k: i32) -> f64 {

@@ -4,7 +4,7 @@
 //! collinear vertices is a segment, one with three equal vertices is a point. Users build
 //! point-to-mesh and segment-to-mesh queries that way.
 
-mod big_int;
+pub(crate) mod big_int;
 mod point_triangle;
 pub(crate) mod predicates;
 mod segment_segment;
