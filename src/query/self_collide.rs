@@ -324,7 +324,11 @@ fn leaf_contact(b: &Bvh, s: usize, t: usize, by_index: bool) -> bool {
 /// [`self_contact`] of `a` and `b` given which of their vertices are shared (`in_b`: bit `i` when
 /// `a[i]` is a vertex of `b`; `in_a` the same for `b`).
 fn contact(a: &Tri, in_b: u8, b: &Tri, in_a: u8) -> bool {
-    let (na, nb) = (in_b.count_ones(), in_a.count_ones());
+    // Bits set in a 3-bit mask; the vertex after and before vertex i.
+    const ONES: [u8; 8] = [0, 1, 1, 2, 1, 2, 2, 3];
+    const NEXT: [usize; 3] = [1, 2, 0];
+    const PREV: [usize; 3] = [2, 0, 1];
+    let (na, nb) = (ONES[usize::from(in_b & 7)], ONES[usize::from(in_a & 7)]);
     if na == 0 {
         // Most such pairs met by a search are apart along a coordinate axis.
         return !boxes_apart(a, b) && tri_overlap(a, b);
@@ -338,14 +342,17 @@ fn contact(a: &Tri, in_b: u8, b: &Tri, in_a: u8) -> bool {
         // other's plane (float signs, certain), they meet only in v, and the rule says so: the
         // signs being nonzero, the plane's triangle has area, so v is not on its edge opposite
         // v, which lies in the plane, where the first triangle has only v; and the first's edge
-        // opposite v is off the plane. Settles most neighbours around a vertex of a mesh (the
-        // rest, in saddles, cross each other's planes).
+        // opposite v is off the plane. Settles most neighbours around a vertex of a mesh; the
+        // rest (in saddles, they cross each other's planes) mostly by a plane through v between
+        // them.
         let (i, j) = (
             in_b.trailing_zeros() as usize,
             in_a.trailing_zeros() as usize,
         );
-        if strictly_one_side(b, &a[(i + 1) % 3], &a[(i + 2) % 3])
-            || strictly_one_side(a, &b[(j + 1) % 3], &b[(j + 2) % 3])
+        let (v, a1, a2, b1, b2) = (&a[i], &a[NEXT[i]], &a[PREV[i]], &b[NEXT[j]], &b[PREV[j]]);
+        if strictly_one_side(b, a1, a2)
+            || strictly_one_side(a, b1, b2)
+            || apart_around(v, a1, a2, b1, b2)
         {
             return false;
         }
@@ -357,28 +364,49 @@ fn contact(a: &Tri, in_b: u8, b: &Tri, in_a: u8) -> bool {
         // a's two are distinct, the shared edge p q.
         let i = (!in_b & 7).trailing_zeros() as usize;
         let j = (!in_a & 7).trailing_zeros() as usize;
-        let (p, q, x, y) = (a[(i + 1) % 3], a[(i + 2) % 3], a[i], b[j]);
+        let (p, q, x, y) = (&a[NEXT[i]], &a[PREV[i]], &a[i], &b[j]);
         if p != q {
             // Sides of the edge first, in a coordinate plane where both project with area (two
             // orientations in 2D, certain in float but for nearly degenerate triangles): on
             // opposite sides they meet only in the edge, coplanar or not. Only pairs folded
             // onto the same side (rare in a mesh) need the coplanarity test, whose float filter
             // fails on the exactly planar quads of many meshes.
-            let side = same_side(&p, &q, &x, &y);
+            let side = same_side(p, q, x, y);
             if side == Some(false) {
                 return false;
             }
-            if orient3d(&p, &q, &x, &y) != 0.0 {
+            if orient3d(p, q, x, y) != 0.0 {
                 // Not coplanar (so both have area): their planes meet in the edge's line.
                 return false;
             }
             if let Some(folded) = side {
                 return folded;
             }
-            edge = Some((p, q));
+            edge = Some((*p, *q));
         }
     }
     unshared_part_meets(a, in_b, b, edge) || unshared_part_meets(b, in_a, a, edge)
+}
+
+/// For triangles `v a1 a2` and `v b1 b2` sharing the vertex `v`: whether a plane through `v`
+/// certainly has `a1` and `a2` strictly on one side and `b1` and `b2` strictly on the other (float
+/// signs whose filter certifies them; `false` when unsure). Then each triangle but `v` is
+/// strictly on its side: they meet only in `v`, and neither's edge opposite `v` meets the other,
+/// as the rule asks. The plane tried is normal to the difference of their vertices' sums, which
+/// separates the blades of a fan around `v` (any normal is valid: it is taken as given, and the
+/// filter bounds the rounding of the evaluations).
+#[inline]
+fn apart_around(v: &Vec3, a1: &Vec3, a2: &Vec3, b1: &Vec3, b2: &Vec3) -> bool {
+    let plane = PlaneFilter::with_normal(v, (a1 + a2) - (b1 + b2));
+    let above = |x: &Vec3| {
+        let (f, certain) = plane.eval(x);
+        certain && f > 0.0
+    };
+    let below = |x: &Vec3| {
+        let (f, certain) = plane.eval(x);
+        certain && f < 0.0
+    };
+    above(a1) && above(a2) && below(b1) && below(b2)
 }
 
 /// Whether `x` and `y` are certainly strictly on the same side of the plane of `t` (float
