@@ -231,6 +231,42 @@ fn planted_faults_are_found() {
     assert!(!check(&pulled).is_empty());
 }
 
+/// A vertex written with a negative zero is the same point as with a positive one: triangles
+/// using either share it (a built model stores them apart, so the search compares coordinates
+/// there). And a saved model, loaded, answers as the model it was saved from.
+#[test]
+fn negative_zeros_and_loaded_models_equal_brute_force() {
+    // A fan around the origin, the origin written four ways; the fan's blades meet only there.
+    let zeros = [
+        [0.0, 0.0, 0.0],
+        [-0.0, 0.0, 0.0],
+        [0.0, -0.0, -0.0],
+        [-0.0, -0.0, -0.0],
+    ];
+    let mut fan = Vec::new();
+    for k in 0..8 {
+        let (a, b) = (k as f64 * 0.7, k as f64 * 0.7 + 0.5);
+        let z = if k % 2 == 0 { 0.2 } else { -0.2 };
+        fan.push([zeros[k % 4], [a.cos(), a.sin(), z], [b.cos(), b.sin(), z]]);
+    }
+    // One more through the origin, upright, crossing blade 0 (angles 0 to 0.5) beyond it.
+    fan.push([zeros[1], [0.9, 0.1, 0.4], [0.9, 0.1, -0.1]]);
+    let want = check(&fan);
+    assert_eq!(want, vec![(0, 8)]);
+    for mesh in [fan, Mesh::torus(1.0, 0.3, 24, 12).tris, load("bunny.tris")] {
+        let m = build(&mesh, VolumeKind::Rss, CollisionVolume::Obb);
+        let loaded = Model::from_bytes(&m.to_bytes().unwrap()).unwrap();
+        let mut got: Vec<_> = self_collide(&loaded, ContactMode::All)
+            .unwrap()
+            .pairs()
+            .iter()
+            .map(|p| (p.id1, p.id2))
+            .collect();
+        got.sort();
+        assert_eq!(got, brute(&mesh));
+    }
+}
+
 /// Against the collision query of the model with itself: every self-collision pair is a colliding
 /// pair, and colliding pairs of triangles sharing no vertex are exactly the self-collision pairs
 /// of such triangles.

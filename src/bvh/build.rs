@@ -202,8 +202,9 @@ impl Bvh {
         }
         drop(recs);
         let inner = Bvh::inner_scale(&nodes);
+        // `in_verts` are shared, and `verts` is a permutation of them.
         Ok(Bvh::assemble(
-            nodes, verts, faces, ids, added, collision, inner,
+            nodes, verts, faces, ids, added, collision, inner, true,
         ))
     }
 }

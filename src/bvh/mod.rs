@@ -229,12 +229,18 @@ pub(crate) struct Bvh {
     /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast
     /// ([`Bvh::ray_tree`]), so a model that never casts a ray does not hold it.
     pub ray: OnceLock<RayTree>,
+    /// Whether no two stored vertices are equal as numbers, so that two triangles share a vertex
+    /// exactly when they share its index (see [`Bvh::distinct_vertices`]).
+    pub distinct: OnceLock<bool>,
 }
 
 impl Bvh {
     /// A hierarchy from its arrays, with what is derived from them (`scale`, `tiny`) computed:
     /// how a build and a load both end. `inner_scale` is [`Bvh::inner_scale`] of `nodes` (a load
-    /// computes it as it reads them).
+    /// computes it as it reads them). `shared`: `verts` are known to have distinct bit patterns
+    /// (a build's, shared by [`build::share_vertices`]), which leaves only negative zeros to
+    /// check for [`Bvh::distinct_vertices`]; a load's are checked on first use.
+    #[allow(clippy::too_many_arguments)]
     fn assemble(
         nodes: Vec<Node>,
         verts: Vec<Vec3>,
@@ -243,9 +249,15 @@ impl Bvh {
         added: Vec<u32>,
         collision: CollisionVolume,
         inner_scale: f64,
+        shared: bool,
     ) -> Bvh {
         let scale = Bvh::scale_bound(inner_scale, &verts);
         let tiny = Bvh::has_tiny(&verts, &faces);
+        let distinct = if shared {
+            OnceLock::from(!has_negative_zero(&verts))
+        } else {
+            OnceLock::new()
+        };
         Bvh {
             nodes,
             verts,
@@ -257,6 +269,7 @@ impl Bvh {
             tiny,
             boundary: OnceLock::new(),
             ray: OnceLock::new(),
+            distinct,
         }
     }
 
@@ -311,6 +324,7 @@ impl Bvh {
             // Rebuilt on use by the copy if it needs them.
             boundary: OnceLock::new(),
             ray: OnceLock::new(),
+            distinct: self.distinct.clone(),
         })
     }
 
@@ -345,6 +359,16 @@ impl Bvh {
         }
         let t = RayTree::build(self)?;
         Ok(self.ray.get_or_init(|| t))
+    }
+
+    /// Whether no two stored vertices are equal as numbers: then two triangles share a vertex
+    /// exactly when their faces share its index, and self-collision compares indices rather than
+    /// coordinates. Known after a build or refit (vertices equal bit for bit are stored once,
+    /// so only a negative zero, equal to a positive one, can break it); checked on the first call
+    /// for a loaded model, whose file may repeat a vertex (by any thread; concurrent first calls
+    /// may each check). `false` also when the check cannot allocate.
+    pub fn distinct_vertices(&self) -> bool {
+        *self.distinct.get_or_init(|| all_distinct(&self.verts))
     }
 
     /// Vertex `i` (an index of [`Boundaries`]' edges).
@@ -487,6 +511,29 @@ impl Bvh {
     }
 }
 
+/// Whether some coordinate is a negative zero.
+fn has_negative_zero(verts: &[Vec3]) -> bool {
+    verts
+        .iter()
+        .any(|v| v.iter().any(|c| *c == 0.0 && c.is_sign_negative()))
+}
+
+/// Whether no two of `verts` (finite) are equal as numbers: no negative zero, and no two with the
+/// same bits (sorted, then neighbours compared: O(n log n), once per loaded model). `false` if
+/// the sort's copy cannot be allocated.
+fn all_distinct(verts: &[Vec3]) -> bool {
+    if has_negative_zero(verts) {
+        return false;
+    }
+    let mut keys: Vec<[u64; 3]> = Vec::new();
+    if keys.try_reserve_exact(verts.len()).is_err() {
+        return false;
+    }
+    keys.extend(verts.iter().map(|v| [v.x, v.y, v.z].map(f64::to_bits)));
+    keys.sort_unstable();
+    keys.windows(2).all(|w| w[0] != w[1])
+}
+
 /// A copy of `v` (its length, not its capacity), or `Err(ModelOutOfMemory)`.
 pub(crate) fn try_copy<T: Copy>(v: &[T]) -> Result<Vec<T>, Error> {
     let mut out = Vec::new();
@@ -529,5 +576,39 @@ mod tests {
         assert_eq!(all, (0..40).collect::<Vec<_>>());
         assert_eq!(NodeRef::leaf(7).kind(), NodeKind::Leaf(7));
         assert_eq!(NodeRef::inner(3).kind(), NodeKind::Inner(3));
+    }
+
+    #[test]
+    fn distinct_vertices_after_build_refit_and_load() {
+        let fan = |origin: Vec3| -> Vec<(Tri, i32)> {
+            (0..6)
+                .map(|i| {
+                    let (a, b) = (f64::from(i), f64::from(i) + 1.0);
+                    let p = |t: f64| Vec3::new(t.cos(), t.sin(), 0.1);
+                    ([origin, p(a), p(b)], i)
+                })
+                .collect()
+        };
+        let zero = Vec3::zeros();
+        let b = Bvh::build(fan(zero), VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        assert!(b.distinct_vertices());
+        // One blade's origin with a negative zero: stored apart from the others'.
+        let mut tris = fan(zero);
+        tris[3].0[0] = Vec3::new(-0.0, 0.0, 0.0);
+        let mut c = Bvh::build(tris.clone(), VolumeKind::Rss, CollisionVolume::Obb).unwrap();
+        assert!(!c.distinct_vertices());
+        // Refit to all positive zeros, then back.
+        let added = |tris: &[(Tri, i32)]| -> Vec<Tri> { tris.iter().map(|t| t.0).collect() };
+        c.refit(&added(&fan(zero)), VolumeKind::Rss).unwrap();
+        assert!(c.distinct_vertices());
+        c.refit(&added(&tris), VolumeKind::Rss).unwrap();
+        assert!(!c.distinct_vertices());
+        // Checked on first use after a load (here: a copy with its answer forgotten).
+        let mut d = b.try_clone().unwrap();
+        d.distinct = OnceLock::new();
+        assert!(d.distinct_vertices());
+        d.verts.push(d.verts[2]);
+        d.distinct = OnceLock::new();
+        assert!(!d.distinct_vertices());
     }
 }

@@ -45,6 +45,8 @@ impl Bvh {
         self.boundary = std::sync::OnceLock::new();
         // The ray tree's boxes are the old vertices': made again on the next ray cast.
         self.ray = std::sync::OnceLock::new();
+        // Shared afresh: distinct bit patterns.
+        self.distinct = std::sync::OnceLock::from(!super::has_negative_zero(&self.verts));
 
         let kind = match volume {
             VolumeKind::Pss => Some(SsvKind::Point),

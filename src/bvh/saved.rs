@@ -407,7 +407,16 @@ impl Bvh {
         check_tree(&children, n as usize)?;
         drop(children);
         Ok((
-            Bvh::assemble(nodes, verts, faces, ids, added, collision, inner_scale),
+            Bvh::assemble(
+                nodes,
+                verts,
+                faces,
+                ids,
+                added,
+                collision,
+                inner_scale,
+                false,
+            ),
             volume,
         ))
     }

@@ -295,6 +295,19 @@ impl PlaneFilter {
         }
     }
 
+    /// The plane through `base` with normal `n`, taken as given (exact): the sign of
+    /// `n . (d - base)` for a point `d`, certified by [`eval`](Self::eval) as for a plane through
+    /// three points (whose bound also covers the rounding of their cross product, here none).
+    #[inline]
+    pub(crate) fn with_normal(base: &Vec3, n: Vec3) -> Self {
+        PlaneFilter {
+            base: *base,
+            n,
+            // The UNDERFLOW added to each component plays the same part as in `new`.
+            nabs: n.abs().add_scalar(UNDERFLOW),
+        }
+    }
+
     /// The float value of `orient3d(a, b, c, d)`, without its error bound.
     #[inline]
     pub(crate) fn value(&self, d: &Vec3) -> f64 {
