@@ -16,6 +16,7 @@
 mod boundary;
 mod build;
 mod build_threads;
+mod far_field;
 mod pqp_view;
 mod principal_axes;
 mod ray_tree;
@@ -23,7 +24,7 @@ mod refit;
 mod saved;
 mod volume_choice;
 
-pub(crate) use boundary::{Boundaries, NodeSurface};
+pub(crate) use boundary::{Boundaries, BoundaryLoop, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
 pub(crate) use ray_tree::{Lane, RayChild, RayTree, Slab, SlabRay};

@@ -4,14 +4,13 @@
 //! Both work in the model's frame: the point is carried there by the inverse pose (the rotation
 //! taken as orthonormal), and the answer carried back.
 
+use super::bound_heap::BoundHeap;
 use super::prepare_point as prepare;
-use super::queue::RadixQueue;
-use super::traversal::NodePair;
-use super::winding::winding_at;
+use super::winding::inside;
 use crate::bounding_volume::Ssv;
 use crate::bvh::{Bvh, NodeKind, NodeRef};
 use crate::error::Error;
-use crate::geometry::point_triangle;
+use crate::geometry::{Tri, point_triangle};
 use crate::math::{Pose, RelPose, Vec3, most};
 use crate::model::Model;
 use std::cell::RefCell;
@@ -99,8 +98,7 @@ pub fn signed_distance(model: &Model, pose: &Pose, point: &Vec3) -> Result<f64, 
     if d == 0.0 {
         return Ok(0.0);
     }
-    let w = winding_at(bvh, &p)?;
-    Ok(if w.abs() >= 0.5 { -d } else { d })
+    Ok(if inside(bvh, &p)? { -d } else { d })
 }
 
 /// A closest triangle found: its slot in leaf order, distance and closest point (model frame).
@@ -111,9 +109,9 @@ struct Nearest {
 }
 
 thread_local! {
-    /// The queue of the closest-point search, one per thread and reused from query to query (its
-    /// buckets keep their capacity), so that only a thread's first query allocates.
-    static QUEUE: RefCell<RadixQueue> = RefCell::new(RadixQueue::default());
+    /// The queue of the closest-point search, one per thread and reused from query to query (it
+    /// keeps its capacity), so that only a thread's first query allocates.
+    static QUEUE: RefCell<BoundHeap> = RefCell::new(BoundHeap::default());
 }
 
 /// The nearest triangle to `p` (model frame) within `max_distance`, if any: the first found at the
@@ -126,7 +124,15 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     let mut best: Option<Nearest> = None;
     let mut cutoff = max_distance;
     let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
-        let c = point_triangle(p, &bvh.tri(t));
+        let tri = bvh.tri(t);
+        // The triangle's box first: a triangle whose box is farther than the cutoff (by more
+        // than the bounds' rounding allowance) cannot be accepted below, and its exact distance
+        // (ten times the box's cost) is not needed.
+        let limit = *cutoff + slack;
+        if box_gap_squared(p, &tri) > limit * limit {
+            return;
+        }
+        let c = point_triangle(p, &tri);
         // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
         // equally near triangles.
         if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
@@ -147,32 +153,57 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         // A query never calls another while it holds the queue, so the borrow cannot fail.
         let mut queue = q.borrow_mut();
         queue.clear();
-        queue.push(entry(root, 0.0));
-        while let Some(NodePair { a: r, bound, .. }) = queue.pop() {
-            if bound > cutoff {
-                break;
-            }
-            for c in bvh.children(r) {
+        let (mut r, mut bound) = (root, 0.0);
+        loop {
+            // The inner children within the cutoff, with their bounds.
+            let mut near: [(NodeRef, f64); 2] = [(r, f64::INFINITY); 2];
+            for (k, c) in bvh.children(r).into_iter().enumerate() {
                 match c.kind() {
                     NodeKind::Leaf(t) => leaf(t, &mut cutoff, &mut best),
                     NodeKind::Inner(_) => {
-                        // Raised to the parent's (which bounds the child's triangles too): the
-                        // queue takes no key below the last popped, nor a negative one.
+                        // Raised to the parent's (which bounds the child's triangles too), so
+                        // that bounds never decrease along the search.
                         let v = bvh.inner_ssv(c).full();
                         let b = most(v.core_distance(p) - v.radius - slack, bound);
                         if b <= cutoff {
-                            queue.push(entry(c, b));
+                            near[k] = (c, b);
                         }
                     }
                 }
+            }
+            // The nearer child next, straight away if no queued node comes before it (the
+            // order of queueing both and taking the least); the other queued.
+            let [c0, c1] = near;
+            let (first, second) = if c1.1 <= c0.1 { (c1, c0) } else { (c0, c1) };
+            if second.1 <= cutoff {
+                queue.push(second.0, second.1);
+            }
+            if first.1 <= cutoff && queue.peek_bound().is_none_or(|b| first.1 <= b) {
+                (r, bound) = first;
+                continue;
+            }
+            if first.1 <= cutoff {
+                queue.push(first.0, first.1);
+            }
+            match queue.pop() {
+                Some((n, b)) if b <= cutoff => (r, bound) = (n, b),
+                _ => break,
             }
         }
     });
     best
 }
 
-/// A queue entry: node `r` with the lower bound `bound` on its distance.
+/// The squared distance from `p` to the axis-aligned box of triangle `t`: at most the square of
+/// the triangle's distance, up to rounding.
 #[inline(always)]
-fn entry(r: NodeRef, bound: f64) -> NodePair {
-    NodePair { a: r, b: r, bound }
+fn box_gap_squared(p: &Vec3, t: &Tri) -> f64 {
+    let mut sum = 0.0;
+    for k in 0..3 {
+        let lo = t[0][k].min(t[1][k]).min(t[2][k]);
+        let hi = t[0][k].max(t[1][k]).max(t[2][k]);
+        let g = (lo - p[k]).max(p[k] - hi).max(0.0);
+        sum += g * g;
+    }
+    sum
 }
