@@ -227,8 +227,9 @@ pub(crate) struct Bvh {
     /// Each inner node's boundary edges, for the winding number: computed on first use
     /// ([`Bvh::boundaries`]), so a model that never asks for one does not hold them.
     pub boundary: OnceLock<Boundaries>,
-    /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast
-    /// ([`Bvh::ray_tree`]), so a model that never casts a ray does not hold it.
+    /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast, or
+    /// a small model's first closest point (see `query/point.rs`) ([`Bvh::ray_tree`]), so a model
+    /// that asks for neither does not hold it.
     pub ray: OnceLock<RayTree>,
 }
 
