@@ -28,15 +28,19 @@ pub(crate) enum NodeSurface<'a> {
 const TRIANGLES: u32 = 1 << 31;
 
 /// One inner node's entry: `len` edges from `start`, or (with [`TRIANGLES`] in `len`) the
-/// triangles of slots `start..start + (len & !TRIANGLES)`; and its boundary's `loop_count` loops
-/// from `loop_start` (none if it has no far fields).
+/// triangles of slots `start..start + (len & !TRIANGLES)`; and its boundary's loops: their count
+/// in the low [`LOOP_COUNT_BITS`] of `loops`, the index of the first above (none if it has no far
+/// fields).
 #[derive(Clone, Copy, Debug, Default)]
 struct Span {
     start: u32,
     len: u32,
-    loop_start: u32,
-    loop_count: u32,
+    loops: u32,
 }
+
+/// Bits of [`Span::loops`] that count a node's loops: a node with more, or whose first loop's
+/// index does not fit in the rest, keeps none (and is summed exactly).
+const LOOP_COUNT_BITS: u32 = 6;
 
 /// Nodes of at least this many triangles get far fields: below, a node's fan has a few edges and
 /// costs little more than the far fields' terms, which would only add memory.
@@ -85,7 +89,11 @@ impl Boundaries {
     #[inline]
     pub fn loops(&self, r: NodeRef) -> &[BoundaryLoop] {
         let s = self.spans[r.index()];
-        &self.loops[s.loop_start as usize..(s.loop_start + s.loop_count) as usize]
+        let (first, count) = (
+            s.loops >> LOOP_COUNT_BITS,
+            s.loops & ((1 << LOOP_COUNT_BITS) - 1),
+        );
+        &self.loops[first as usize..(first + count) as usize]
     }
 
     /// The edges of loop `l`.
@@ -154,15 +162,21 @@ impl Boundaries {
                     self.edges.push(e);
                 }
             }
-            let loop_start = self.loops.len() as u32;
+            let first = self.loops.len();
             if tris.len() >= FAR_FIELD_TRIANGLES && edges > 0 {
                 self.add_loops(bvh, start as usize, edges)?;
             }
+            let count = self.loops.len() - first;
+            let loops = if count < 1 << LOOP_COUNT_BITS && first < 1 << (32 - LOOP_COUNT_BITS) {
+                ((first as u32) << LOOP_COUNT_BITS) | count as u32
+            } else {
+                self.loops.truncate(first);
+                0
+            };
             Span {
                 start,
                 len: edges as u32,
-                loop_start,
-                loop_count: self.loops.len() as u32 - loop_start,
+                loops,
             }
         };
         Ok((chain, tris))
