@@ -7,6 +7,7 @@
 //! Built on first use (see [`Bvh::boundaries`]): a model that never asks for a winding number pays
 //! nothing for it.
 
+use super::far_field::FarField;
 use super::{Bvh, NodeKind, NodeRef};
 use crate::error::Error;
 use std::ops::Range;
@@ -27,9 +28,29 @@ pub(crate) enum NodeSurface<'a> {
 const TRIANGLES: u32 = 1 << 31;
 
 /// One inner node's entry: `len` edges from `start`, or (with [`TRIANGLES`] in `len`) the
-/// triangles of slots `start..start + (len & !TRIANGLES)`.
+/// triangles of slots `start..start + (len & !TRIANGLES)`; and its boundary's loops: their count
+/// in the low [`LOOP_COUNT_BITS`] of `loops`, the index of the first above (none if it has no far
+/// fields).
 #[derive(Clone, Copy, Debug, Default)]
 struct Span {
+    start: u32,
+    len: u32,
+    loops: u32,
+}
+
+/// Bits of [`Span::loops`] that count a node's loops: a node with more, or whose first loop's
+/// index does not fit in the rest, keeps none (and is summed exactly).
+const LOOP_COUNT_BITS: u32 = 6;
+
+/// Nodes of at least this many triangles get far fields: below, a node's fan has a few edges and
+/// costs little more than the far fields' terms, which would only add memory.
+const FAR_FIELD_TRIANGLES: usize = 32;
+
+/// One closed loop of a node's boundary: its edges `start..start + len` (of [`Boundaries`]'
+/// edges, in the node's run) and the far field of the fan over them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BoundaryLoop {
+    pub far: FarField,
     start: u32,
     len: u32,
 }
@@ -41,6 +62,9 @@ pub(crate) struct Boundaries {
     spans: Vec<Span>,
     /// The stored nodes' edges, one run per node.
     edges: Vec<[u32; 2]>,
+    /// The loops of the boundaries of the nodes of at least [`FAR_FIELD_TRIANGLES`] triangles,
+    /// one run per node.
+    loops: Vec<BoundaryLoop>,
 }
 
 /// An undirected edge as a sorting key (smaller index in the high half) with its multiplicity
@@ -60,10 +84,29 @@ impl Boundaries {
         }
     }
 
+    /// Inner node `r`'s boundary as closed loops with their far fields: empty if it has none
+    /// (a node of few triangles, or closed), else their edges make up its [`NodeSurface::Fan`].
+    #[inline]
+    pub fn loops(&self, r: NodeRef) -> &[BoundaryLoop] {
+        let s = self.spans[r.index()];
+        let (first, count) = (
+            s.loops >> LOOP_COUNT_BITS,
+            s.loops & ((1 << LOOP_COUNT_BITS) - 1),
+        );
+        &self.loops[first as usize..(first + count) as usize]
+    }
+
+    /// The edges of loop `l`.
+    #[inline]
+    pub fn loop_edges(&self, l: &BoundaryLoop) -> &[[u32; 2]] {
+        &self.edges[l.start as usize..(l.start + l.len) as usize]
+    }
+
     /// Bytes held.
     pub fn memory_usage(&self) -> usize {
         self.spans.capacity() * std::mem::size_of::<Span>()
             + self.edges.capacity() * std::mem::size_of::<[u32; 2]>()
+            + self.loops.capacity() * std::mem::size_of::<BoundaryLoop>()
             + std::mem::size_of::<Boundaries>()
     }
 
@@ -79,6 +122,7 @@ impl Boundaries {
             b.collect(bvh, bvh.root())?;
         }
         b.edges.shrink_to_fit();
+        b.loops.shrink_to_fit();
         Ok(b)
     }
 
@@ -103,6 +147,7 @@ impl Boundaries {
             Span {
                 start: tris.start as u32,
                 len: tris.len() as u32 | TRIANGLES,
+                ..Span::default()
             }
         } else {
             if self.edges.len() + edges >= TRIANGLES as usize {
@@ -117,12 +162,75 @@ impl Boundaries {
                     self.edges.push(e);
                 }
             }
+            let first = self.loops.len();
+            if tris.len() >= FAR_FIELD_TRIANGLES && edges > 0 {
+                self.add_loops(bvh, start as usize, edges)?;
+            }
+            let count = self.loops.len() - first;
+            let loops = if count < 1 << LOOP_COUNT_BITS && first < 1 << (32 - LOOP_COUNT_BITS) {
+                ((first as u32) << LOOP_COUNT_BITS) | count as u32
+            } else {
+                self.loops.truncate(first);
+                0
+            };
             Span {
                 start,
                 len: edges as u32,
+                loops,
             }
         };
         Ok((chain, tris))
+    }
+
+    /// Orders the `n` edges from `start` (a node's boundary, a sum of cycles) loop by loop, and
+    /// records each loop with its far field. Records nothing if some walk does not close (never
+    /// expected: every vertex of a boundary is entered as often as it is left).
+    fn add_loops(&mut self, bvh: &Bvh, start: usize, n: usize) -> Result<(), Error> {
+        let oom = |_| Error::OutOfMemory;
+        // The edges by first vertex, each with a flag once walked.
+        let mut by_from: Vec<([u32; 2], bool)> = Vec::new();
+        by_from.try_reserve_exact(n).map_err(oom)?;
+        by_from.extend(self.edges[start..start + n].iter().map(|&e| (e, false)));
+        by_from.sort_unstable_by_key(|&(e, _)| e);
+        let mut ordered: Vec<[u32; 2]> = Vec::new();
+        ordered.try_reserve_exact(n).map_err(oom)?;
+        let mut cuts = Vec::new();
+        for first in 0..n {
+            if by_from[first].1 {
+                continue;
+            }
+            by_from[first].1 = true;
+            let begin = ordered.len();
+            let origin = by_from[first].0[0];
+            let mut e = by_from[first].0;
+            ordered.push(e);
+            while e[1] != origin {
+                let from = by_from.partition_point(|&(f, _)| f[0] < e[1]);
+                let Some(k) = (from..n)
+                    .take_while(|&k| by_from[k].0[0] == e[1])
+                    .find(|&k| !by_from[k].1)
+                else {
+                    return Ok(());
+                };
+                by_from[k].1 = true;
+                e = by_from[k].0;
+                ordered.push(e);
+            }
+            cuts.try_reserve(1).map_err(oom)?;
+            cuts.push(begin..ordered.len());
+        }
+        self.edges[start..start + n].copy_from_slice(&ordered);
+        self.loops.try_reserve(cuts.len()).map_err(oom)?;
+        for c in cuts {
+            let edges = &self.edges[start + c.start..start + c.end];
+            let far = FarField::of_fan(edges.iter().map(|e| (bvh.vertex(e[0]), bvh.vertex(e[1]))));
+            self.loops.push(BoundaryLoop {
+                far,
+                start: (start + c.start) as u32,
+                len: c.len() as u32,
+            });
+        }
+        Ok(())
     }
 }
 

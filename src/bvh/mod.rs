@@ -16,6 +16,7 @@
 mod boundary;
 mod build;
 mod build_threads;
+mod far_field;
 mod pqp_view;
 mod principal_axes;
 mod ray_tree;
@@ -23,7 +24,7 @@ mod refit;
 mod saved;
 mod volume_choice;
 
-pub(crate) use boundary::{Boundaries, NodeSurface};
+pub(crate) use boundary::{Boundaries, BoundaryLoop, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
 pub(crate) use ray_tree::{Lane, RayChild, RayTree, Slab, SlabRay};
@@ -226,8 +227,9 @@ pub(crate) struct Bvh {
     /// Each inner node's boundary edges, for the winding number: computed on first use
     /// ([`Bvh::boundaries`]), so a model that never asks for one does not hold them.
     pub boundary: OnceLock<Boundaries>,
-    /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast
-    /// ([`Bvh::ray_tree`]), so a model that never casts a ray does not hold it.
+    /// The ray-casting layout (axis-aligned four-wide nodes): computed on the first ray cast, or
+    /// a small model's first closest point (see `query/point.rs`) ([`Bvh::ray_tree`]), so a model
+    /// that asks for neither does not hold it.
     pub ray: OnceLock<RayTree>,
     /// Whether no two stored vertices are equal as numbers, so that two triangles share a vertex
     /// exactly when they share its index (see [`Bvh::distinct_vertices`]).

@@ -372,6 +372,32 @@ impl RayTree {
         out
     }
 
+    /// Lower bounds on the squared distance from `p` to each child box of node `i`: per axis the
+    /// gap between `p` and the box, less `slack` (covering the subtraction's rounding), squared
+    /// and summed; infinity for an unused slot.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lanes side by side, as in `cut`
+    pub fn box_gaps(&self, i: u32, p: &[f64; 3], slack: f64) -> [f64; WIDTH] {
+        let n = &self.nodes[i as usize];
+        let mut d2 = [0.0f64; WIDTH];
+        for j in 0..3 {
+            for k in 0..WIDTH {
+                // Plain comparisons, which compile to vector min and max.
+                let below = f64::from(n.lo[j][k]) - p[j];
+                let above = p[j] - f64::from(n.hi[j][k]);
+                let g = if below > above { below } else { above } - slack;
+                let g = if g > 0.0 { g } else { 0.0 };
+                d2[k] += g * g;
+            }
+        }
+        for k in 0..WIDTH {
+            if n.lo[0][k] > n.hi[0][k] {
+                d2[k] = f64::INFINITY;
+            }
+        }
+        d2
+    }
+
     /// The slot (leaf order of the main hierarchy) of the triangle at position `j` of this tree's
     /// order (a leaf's run is `first..first + count`).
     #[inline(always)]

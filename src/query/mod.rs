@@ -8,6 +8,7 @@
 //! The cache lives in the result, never in the models, so models stay immutable and shareable.
 
 mod batch;
+mod bound_heap;
 mod collide;
 mod contact_time;
 mod distance;
