@@ -28,7 +28,7 @@
 //! order of the search.
 
 use super::batch::{Workers, answer_all};
-use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayChild, RayTree, Slab, SlabRay};
+use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayTree, Slab, SlabRay};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
 use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
@@ -89,6 +89,11 @@ struct LocalRay {
     kx: usize,
     ky: usize,
     kz: usize,
+    /// The origin's coordinates on axes `kx`, `ky`, `kz`, and the direction's on `kz`.
+    ox: f64,
+    oy: f64,
+    oz: f64,
+    dz: f64,
     /// The shear that makes the ray the third axis: `x' = x - sx z`, `y' = y - sy z`.
     sx: f64,
     sy: f64,
@@ -196,6 +201,10 @@ impl LocalRay {
             kx,
             ky,
             kz,
+            ox: o[kx],
+            oy: o[ky],
+            oz: o[kz],
+            dz: d[kz],
             sx: d[kx] / d[kz],
             sy: d[ky] / d[kz],
             grow,
@@ -205,48 +214,61 @@ impl LocalRay {
     /// A vertex in the ray's frame: `(x', y')` across the ray, and `v - o` along the dominant axis.
     #[inline(always)]
     fn project(&self, v: &Vec3) -> [f64; 3] {
-        let a = v - self.o;
-        let z = a[self.kz];
-        [a[self.kx] - self.sx * z, a[self.ky] - self.sy * z, z]
+        let z = v[self.kz] - self.oz;
+        [
+            (v[self.kx] - self.ox) - self.sx * z,
+            (v[self.ky] - self.oy) - self.sy * z,
+            z,
+        ]
     }
 
     /// The ray parameter where it meets triangle `t` (scaled direction's units), if it does at a
     /// parameter `>= 0` (a hit within rounding behind the origin counts as a hit at 0).
-    #[inline]
-    fn hit(&self, t: &Tri) -> Option<f64> {
-        let [a, b, c] = [
-            self.project(&t[0]),
-            self.project(&t[1]),
-            self.project(&t[2]),
-        ];
+    ///
+    /// Most triangles a search tests are missed, and most misses are decided here, inline, by
+    /// two edge functions surely of opposite signs; the rest is [`confirm`](LocalRay::confirm).
+    #[inline(always)]
+    fn hit(&self, t: [&Vec3; 3]) -> Option<f64> {
+        let [a, b, c] = t.map(|v| self.project(v));
         let e = [edge(&b, &c), edge(&c, &a), edge(&a, &b)];
-        // Most misses: one edge function surely negative, another surely positive.
-        let neg = e.iter().any(|&(v, err)| v < -err);
-        let pos = e.iter().any(|&(v, err)| v > err);
+        // Without short circuits: a few vector comparisons rather than branches.
+        let neg = (e[0].0 < -e[0].1) | (e[1].0 < -e[1].1) | (e[2].0 < -e[2].1);
+        let pos = (e[0].0 > e[0].1) | (e[1].0 > e[1].1) | (e[2].0 > e[2].1);
         if neg && pos {
             return None;
         }
+        self.confirm(t, [a, b, c], e)
+    }
+
+    /// [`hit`](LocalRay::hit) past its quick rejection: `p` the projected vertices, `e` the
+    /// filtered edge functions.
+    #[inline(never)]
+    fn confirm(&self, t: [&Vec3; 3], p: [[f64; 3]; 3], e: [(f64, f64); 3]) -> Option<f64> {
+        let [a, b, c] = p;
         let s = [
             edge_sign(e[0], &b, &c),
             edge_sign(e[1], &c, &a),
             edge_sign(e[2], &a, &b),
         ];
         let (neg, pos) = (s.contains(&-1), s.contains(&1));
-        if neg == pos || zero_area(t) {
+        if neg == pos || zero_area(&[*t[0], *t[1], *t[2]]) {
             // Opposite signs (a miss), or all zero (edge-on: its neighbours' edges are hit), or a
             // triangle without area.
             return None;
         }
         let w = weights(&[a, b, c], s);
-        let z = [
-            a[2] / self.d[self.kz],
-            b[2] / self.d[self.kz],
-            c[2] / self.d[self.kz],
-        ];
+        let z = [a[2] / self.dz, b[2] / self.dz, c[2] / self.dz];
         let t = w[0] * z[0] + w[1] * z[1] + w[2] * z[2];
         // The sum's rounding and the z's: a few ulps of the largest.
         let tol = 8.0 * f64::EPSILON * z[0].abs().max(z[1].abs()).max(z[2].abs());
         (t >= -tol).then_some(t.max(0.0))
+    }
+
+    /// [`hit`](LocalRay::hit) on the triangle in leaf slot `slot` of `bvh`.
+    #[inline(always)]
+    fn hit_slot(&self, bvh: &Bvh, slot: usize) -> Option<f64> {
+        let f = &bvh.faces[slot];
+        self.hit(f.map(|i| &bvh.verts[i as usize]))
     }
 
     /// The nearest hit among the triangles of `tree` (the ray layout of `bvh`) at a parameter
@@ -277,24 +299,33 @@ impl LocalRay {
         let mut best: Option<Best> = None;
         // How far a node may start and still be visited: the best hit's parameter (a node starting
         // exactly there may hold a triangle added earlier), grown by a few ulps for the slab test's
-        // last rounding.
-        let reach = |best: &Option<Best>| best.map_or(limit, |b| b.t) * (1.0 + 1e-14);
-        // Nodes still to visit with their entry parameters, the nearest on top: each level of the
-        // tree (at most `MAX_DEPTH`) leaves at most three children behind. Left uninitialised
-        // (zeroing it would cost as much as a short search).
-        let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
+        // last rounding, rounded up to the slab test's arithmetic, and at most its largest finite
+        // value (which `RayTree::cut` needs; no point of the tree lies farther along the ray).
+        // Updated with the best hit.
+        let reach_of = |t: f64| T::above(t * (1.0 + 1e-14)).min(T::LARGEST);
+        let mut reach = reach_of(limit);
+        // Nodes still to visit (link, count as in `RayTree::links`) with their entry parameters,
+        // the nearest on top: each level of the tree (at most `MAX_DEPTH`) leaves at most three
+        // children behind. Left uninitialised (zeroing it would cost as much as a short search).
+        let mut stack = [const { MaybeUninit::<(u32, u32, T)>::uninit() }; 3 * MAX_DEPTH + 4];
         let mut len = 0;
-        let mut node = RayChild::Inner(tree.root());
+        // The node visited: an inner node (`count == 0`) or a leaf's run of the order.
+        let (mut link, mut count) = (tree.root(), 0u32);
         loop {
-            match node {
-                RayChild::Inner(i) => {
-                    let cut = tree.cut(i, slab, reach(&best));
-                    // The crossed children, farthest first: all but the nearest are stacked, the
-                    // nearest is visited next.
-                    let mut crossed = [(0usize, 0.0f64); 4];
-                    let mut n = 0;
-                    for (k, &t) in cut.iter().enumerate() {
-                        if t != f64::INFINITY {
+            if count == 0 {
+                let (enter, mask) = tree.cut(link, slab, reach);
+                if mask != 0 {
+                    let (links, counts) = tree.links(link);
+                    let mut near = mask.trailing_zeros() as usize;
+                    if mask & (mask - 1) != 0 {
+                        // Several crossed: sorted farthest first, all but the nearest stacked.
+                        let mut crossed = [(0usize, T::ZERO); 4];
+                        let mut n = 0;
+                        let mut m = mask;
+                        while m != 0 {
+                            let k = m.trailing_zeros() as usize;
+                            m &= m - 1;
+                            let t = enter[k];
                             let mut j = n;
                             while j > 0 && crossed[j - 1].1 < t {
                                 crossed[j] = crossed[j - 1];
@@ -303,31 +334,30 @@ impl LocalRay {
                             crossed[j] = (k, t);
                             n += 1;
                         }
-                    }
-                    if n > 0 {
                         for &(k, t) in &crossed[..n - 1] {
                             // Checked indexing: the depth bound keeps it in range.
-                            stack[len] = MaybeUninit::new((tree.child(i, k), t));
+                            stack[len] = MaybeUninit::new((links[k], counts[k], t));
                             len += 1;
                         }
-                        node = tree.child(i, crossed[n - 1].0);
-                        continue;
+                        near = crossed[n - 1].0;
                     }
+                    (link, count) = (links[near], counts[near]);
+                    continue;
                 }
-                RayChild::Leaf { first, count } => {
-                    for j in first..first + count {
-                        let slot = tree.slot(j);
-                        let Some(t) = self.hit(&bvh.tri(slot)) else {
-                            continue;
-                        };
-                        let added = bvh.added[slot];
-                        let better = match best {
-                            None => true,
-                            Some(b) => t < b.t || (t == b.t && added < b.added),
-                        };
-                        if better && accept(t) {
-                            best = Some(Best { t, slot, added });
-                        }
+            } else {
+                for j in link..link + count {
+                    let slot = tree.slot(j);
+                    let Some(t) = self.hit_slot(bvh, slot) else {
+                        continue;
+                    };
+                    let added = bvh.added[slot];
+                    let better = match best {
+                        None => true,
+                        Some(b) => t < b.t || (t == b.t && added < b.added),
+                    };
+                    if better && accept(t) {
+                        best = Some(Best { t, slot, added });
+                        reach = reach_of(t);
                     }
                 }
             }
@@ -338,9 +368,9 @@ impl LocalRay {
                 }
                 len -= 1;
                 // SAFETY: the entries below `len` were written above.
-                let (next, enter) = unsafe { stack[len].assume_init() };
-                if enter <= reach(&best) {
-                    node = next;
+                let (next, n, enter) = unsafe { stack[len].assume_init() };
+                if enter <= reach {
+                    (link, count) = (next, n);
                     break;
                 }
             }
@@ -601,7 +631,7 @@ mod tests {
                     .map(|b| (b.t, b.slot));
                 let mut brute: Option<(f64, usize, u32)> = None;
                 for slot in 0..bvh.num_tris() {
-                    if let Some(t) = ray.hit(&bvh.tri(slot)) {
+                    if let Some(t) = ray.hit_slot(bvh, slot) {
                         let a = bvh.added[slot];
                         if t <= max_t
                             && brute.is_none_or(|(bt, _, ba)| t < bt || (t == bt && a < ba))
