@@ -20,6 +20,7 @@
 
 use super::{Bvh, MAX_DEPTH, try_copy};
 use crate::error::Error;
+use crate::geometry::predicates::max_abs;
 use crate::math::Vec3;
 
 /// The most triangles a leaf holds.
@@ -146,7 +147,7 @@ impl SlabRay {
     /// moves the ray by at most `1e-30 t`, and `t <= s` within any box (the dominant coordinate
     /// moves at least `t`), far below the growth. Otherwise double precision, grown by `grow`.
     pub fn new(o: &Vec3, d: &Vec3, grow: f64, extent: f64) -> SlabRay {
-        let s = o.amax() + extent;
+        let s = max_abs(&[o]) + extent;
         if (1e-30..=1e30).contains(&s) {
             let g = grow.max(SINGLE_GROW * s);
             SlabRay::Single(Slab::make(o, d, g, 1e-30, |x| x as f32))

@@ -31,7 +31,7 @@ use super::batch::{Workers, answer_all};
 use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayTree, Slab, SlabRay};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
-use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
+use crate::geometry::predicates::{cross_accurate, exponent, max_abs, orient2d, pow2, two_prod};
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
 use std::mem::MaybeUninit;
@@ -132,11 +132,16 @@ impl<'a> RayCaster<'a> {
     /// [`MAX_COORDINATE`] coordinate (the direction may be as large as any finite value), and
     /// `Err(InvalidArgument)` if the direction is zero.
     pub(crate) fn check(origin: &Vec3, direction: &Vec3) -> Result<(), Error> {
-        if !origin
-            .iter()
-            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE)
-            || !direction.iter().all(|v| v.is_finite())
-        {
+        // Without short circuits (a NaN fails every comparison): a few vector comparisons.
+        let o = origin.abs();
+        let d = direction.abs();
+        let ok = (o.x <= MAX_COORDINATE)
+            & (o.y <= MAX_COORDINATE)
+            & (o.z <= MAX_COORDINATE)
+            & (d.x <= f64::MAX)
+            & (d.y <= f64::MAX)
+            & (d.z <= f64::MAX);
+        if !ok {
             return Err(Error::NonFiniteCoordinate);
         }
         if direction.amax() == 0.0 {
@@ -153,10 +158,16 @@ impl<'a> RayCaster<'a> {
         let r = &self.pose.rotation;
         let o = r.tr_mul(&(origin - self.pose.translation));
         let (d, k2) = unit_scale(&r.tr_mul(&dw));
-        if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_LOCAL)
-            || !d.iter().all(|v| v.is_finite())
-            || d.amax() == 0.0
-        {
+        // Without short circuits (a NaN fails every comparison).
+        let (oa, da) = (o.abs(), d.abs());
+        let ok = (oa.x <= MAX_LOCAL)
+            & (oa.y <= MAX_LOCAL)
+            & (oa.z <= MAX_LOCAL)
+            & (da.x <= f64::MAX)
+            & (da.y <= f64::MAX)
+            & (da.z <= f64::MAX)
+            & (max_abs(&[&d]) != 0.0);
+        if !ok {
             return None;
         }
         let ray = LocalRay::new(o, d, self.bvh.scale);
@@ -229,7 +240,7 @@ impl LocalRay {
     /// two edge functions surely of opposite signs; the rest is [`confirm`](LocalRay::confirm).
     #[inline(always)]
     fn hit(&self, t: [&Vec3; 3]) -> Option<f64> {
-        let [a, b, c] = t.map(|v| self.project(v));
+        let [a, b, c] = [self.project(t[0]), self.project(t[1]), self.project(t[2])];
         let e = [edge(&b, &c), edge(&c, &a), edge(&a, &b)];
         // Without short circuits: a few vector comparisons rather than branches.
         let neg = (e[0].0 < -e[0].1) | (e[1].0 < -e[1].1) | (e[2].0 < -e[2].1);
@@ -268,7 +279,8 @@ impl LocalRay {
     #[inline(always)]
     fn hit_slot(&self, bvh: &Bvh, slot: usize) -> Option<f64> {
         let f = &bvh.faces[slot];
-        self.hit(f.map(|i| &bvh.verts[i as usize]))
+        let v = &bvh.verts;
+        self.hit([&v[f[0] as usize], &v[f[1] as usize], &v[f[2] as usize]])
     }
 
     /// The nearest hit among the triangles of `tree` (the ray layout of `bvh`) at a parameter
@@ -444,7 +456,7 @@ fn zero_area(t: &Tri) -> bool {
 /// `(b - a) x (c - a)` of a triangle with area, to a few ulps, in some positive scale.
 fn triangle_normal(a: &Vec3, b: &Vec3, c: &Vec3) -> Vec3 {
     let (e1, e2) = (b - a, c - a);
-    let k = pow2((-exponent(e1.amax().max(e2.amax()))).clamp(-1022, 1023));
+    let k = pow2((-exponent(max_abs(&[&e1, &e2]))).clamp(-1022, 1023));
     let n = cross_accurate(&(e1 * k), &(e2 * k));
     if n != Vec3::zeros() {
         return n;
@@ -461,9 +473,10 @@ fn unit(v: &Vec3) -> Vec3 {
     v / v.norm()
 }
 
-/// `v` (not zero) scaled by `2^-k` so that its largest coordinate is in `[1, 2)`, and `k`.
+/// `v` (not zero, no NaN) scaled by `2^-k` so that its largest coordinate is in `[1, 2)`, and
+/// `k`.
 fn unit_scale(v: &Vec3) -> (Vec3, i32) {
-    let m = v.amax();
+    let m = max_abs(&[v]);
     if m == 0.0 || !m.is_finite() {
         return (*v, 0);
     }
@@ -477,6 +490,10 @@ fn unit_scale(v: &Vec3) -> (Vec3, i32) {
 
 /// `x * 2^k`, in steps so that no factor is out of range; it may over- or underflow.
 fn scaled(x: f64, k: i32) -> f64 {
+    if (-1000..=1000).contains(&k) {
+        // The loop's single step.
+        return x * pow2(k);
+    }
     let mut y = x;
     let mut k = k;
     while k != 0 {
