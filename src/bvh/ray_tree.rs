@@ -17,9 +17,9 @@
 //! each rounded outwards, so a stored box holds the exact one.
 //!
 //! Built on first use (see [`Bvh::ray_tree`]): a model that never casts a ray pays nothing for it.
-//! The nodes of a large tree are laid out on huge pages where the system allows (see
-//! [`huge_page_array`]).
+//! The nodes of a large tree are offered huge pages (see [`huge_page_copy`]).
 
+use super::saved::advise_huge_pages;
 use super::{Bvh, MAX_DEPTH};
 use crate::error::Error;
 use crate::geometry::predicates::max_abs;
@@ -175,10 +175,8 @@ impl<T: Lane> Slab<T> {
 /// The ray-casting layout of a hierarchy (see the module's documentation).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct RayTree {
-    /// The nodes, the root at `root` (the ones before it unused: see [`huge_page_layout`]).
+    /// The nodes, the root first.
     nodes: Vec<WideNode>,
-    /// The root's index.
-    root: u32,
     /// The triangles' slots (leaf order of the main hierarchy) in this tree's leaf order: a leaf
     /// holds a run of it.
     order: Vec<u32>,
@@ -266,7 +264,6 @@ impl RayTree {
         let root = bin[0];
         let mut tree = RayTree {
             nodes: Vec::new(),
-            root: 0,
             order: Vec::new(),
             extent: root.lo.amax().max(root.hi.amax()),
         };
@@ -279,20 +276,8 @@ impl RayTree {
             tree.collapse(&bin, 0)?;
         }
         drop(bin);
-        // Laid out for huge pages (the nodes were grown by doubling: keep what is used), the
-        // links to inner nodes shifted by where the array starts.
-        let nodes = std::mem::take(&mut tree.nodes);
-        (tree.nodes, tree.root) = huge_page_array(nodes.len(), EMPTY, |base| {
-            nodes.iter().map(move |n| {
-                let mut n = *n;
-                for k in 0..WIDTH {
-                    if n.count[k] == 0 {
-                        n.child[k] += base;
-                    }
-                }
-                n
-            })
-        })?;
+        // Grown by doubling: keep what is used, on huge pages.
+        tree.nodes = huge_page_copy(&tree.nodes)?;
         tree.order = order;
         Ok(tree)
     }
@@ -341,7 +326,7 @@ impl RayTree {
     /// The root's index.
     #[inline(always)]
     pub fn root(&self) -> u32 {
-        self.root
+        0
     }
 
     /// Child `k` of node `i`.
@@ -429,64 +414,21 @@ impl RayTree {
     }
 }
 
-/// The size of a huge page (Linux on x86-64 and ARM64 with 4 KiB base pages).
-const HUGE_PAGE: usize = 2 << 20;
-
-/// An array of `len` items, `items(base)`, in a new allocation where they lie on huge pages as
-/// far as the system allows, after `base` unused copies of `filler`; and `base`.
+/// `nodes` copied into a new array, offered huge pages before it is written.
 ///
-/// A search on a large model reads nodes scattered over tens of megabytes: with
-/// 4 KiB pages, most of those reads also miss the address translation cache (measured in
-/// BENCHMARKS.md section 27). On Linux, an array of at least two huge pages gets `base` unused
-/// items in front so that the items from a huge page boundary on can be advised as huge pages
-/// (`MADV_HUGEPAGE`) before they are first written. Elsewhere, or for small arrays, `base` is 0.
-fn huge_page_array<T: Copy, I: Iterator<Item = T>>(
-    len: usize,
-    filler: T,
-    items: impl FnOnce(u32) -> I,
-) -> Result<(Vec<T>, u32), Error> {
-    let oom = |_| Error::OutOfMemory;
-    let size = std::mem::size_of::<T>();
-    let mut out: Vec<T> = Vec::new();
-    if !cfg!(target_os = "linux") || len * size < 2 * HUGE_PAGE {
-        out.try_reserve_exact(len).map_err(oom)?;
-        out.extend(items(0));
-        return Ok((out, 0));
-    }
-    let pad = HUGE_PAGE.div_ceil(size);
-    out.try_reserve_exact(len + pad).map_err(oom)?;
-    let start = out.as_ptr() as usize;
-    let boundary = start.next_multiple_of(HUGE_PAGE);
-    let base = (boundary - start).div_ceil(size);
-    out.extend(std::iter::repeat_n(filler, base));
-    let end = start + (base + len) * size;
-    advise_huge_pages(boundary, (end - boundary) / HUGE_PAGE * HUGE_PAGE);
-    out.extend(items(base as u32));
-    Ok((out, base as u32))
+/// A search on a large model reads nodes scattered over tens of megabytes: with 4 KiB pages,
+/// most of those reads also miss the address translation cache (measured in BENCHMARKS.md
+/// section 27). The whole 2 MiB pages of a fresh allocation of at least two are advised as huge
+/// pages ([`advise_huge_pages`], shared with loading saved models), before the nodes are
+/// written to it.
+fn huge_page_copy(nodes: &[WideNode]) -> Result<Vec<WideNode>, Error> {
+    let mut out: Vec<WideNode> = Vec::new();
+    out.try_reserve_exact(nodes.len())
+        .map_err(|_| Error::OutOfMemory)?;
+    advise_huge_pages(out.as_mut_ptr().cast(), std::mem::size_of_val(nodes));
+    out.extend_from_slice(nodes);
+    Ok(out)
 }
-
-/// Advises `len` bytes from `addr` (page aligned, not yet written, within one allocation) as
-/// huge pages: a hint, whose failure changes nothing.
-#[cfg(target_os = "linux")]
-fn advise_huge_pages(addr: usize, len: usize) {
-    unsafe extern "C" {
-        fn madvise(
-            addr: *mut std::ffi::c_void,
-            len: usize,
-            advice: std::ffi::c_int,
-        ) -> std::ffi::c_int;
-    }
-    /// `MADV_HUGEPAGE` of Linux's `<sys/mman.h>` (the same on every architecture).
-    const MADV_HUGEPAGE: std::ffi::c_int = 14;
-    if len > 0 {
-        // SAFETY: the range lies within an allocation of ours; the advice changes how its pages
-        // are backed, not their contents (it leaves no dangling mapping).
-        unsafe { madvise(addr as *mut std::ffi::c_void, len, MADV_HUGEPAGE) };
-    }
-}
-
-#[cfg(not(target_os = "linux"))]
-fn advise_huge_pages(_addr: usize, _len: usize) {}
 
 /// Stores child `k` of node `n`: `s`'s box rounded outwards to single precision, and its link.
 fn set(n: &mut WideNode, k: usize, s: &Binary, child: u32, count: u32) {

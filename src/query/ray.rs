@@ -745,8 +745,7 @@ mod tests {
         }
     }
 
-    /// A tree large enough to be laid out for huge pages (its links shifted): the search equals
-    /// testing every triangle.
+    /// A tree large enough to be offered huge pages: the search equals testing every triangle.
     #[test]
     fn large_tree_equals_testing_every_triangle() {
         // A wavy height field of 2 * 300 * 300 triangles: more than 32,768 nodes of 128 bytes.
@@ -764,10 +763,6 @@ mod tests {
         }
         let model = Model::from_triangles(tris).unwrap();
         let bvh = model.bvh().unwrap();
-        let tree = bvh.ray_tree().unwrap();
-        if cfg!(target_os = "linux") {
-            assert!(tree.root() > 0, "not laid out for huge pages");
-        }
         let mut r = Rng(5);
         let mut hits = 0;
         for _ in 0..40 {
