@@ -85,11 +85,12 @@ impl Pose {
 
     /// `Err(NonFinitePose)` unless every entry is finite and not above [`MAX_COORDINATE`].
     pub fn validate(&self) -> Result<(), Error> {
+        // Without short circuits (a NaN fails the comparison): vector comparisons, no branches.
         let ok = self
             .rotation
             .iter()
             .chain(self.translation.iter())
-            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE);
+            .fold(true, |ok, v| ok & (v.abs() <= MAX_COORDINATE));
         if ok {
             Ok(())
         } else {

@@ -17,9 +17,12 @@
 //! each rounded outwards, so a stored box holds the exact one.
 //!
 //! Built on first use (see [`Bvh::ray_tree`]): a model that never casts a ray pays nothing for it.
+//! The nodes of a large tree are offered huge pages (see [`huge_page_copy`]).
 
-use super::{Bvh, MAX_DEPTH, try_copy};
+use super::saved::advise_huge_pages;
+use super::{Bvh, MAX_DEPTH};
 use crate::error::Error;
+use crate::geometry::predicates::max_abs;
 use crate::math::Vec3;
 
 /// The most triangles a leaf holds.
@@ -28,7 +31,8 @@ pub(crate) const LEAF_MAX: usize = 2;
 /// Children per node.
 const WIDTH: usize = 4;
 
-/// One node: four child boxes (an unused slot has an empty box, `lo > hi`, which no ray cuts).
+/// One node: four child boxes (an unused slot has the box whose bounds are all `+inf`, which no
+/// ray cuts: see [`RayTree::cut`]).
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 struct WideNode {
@@ -43,12 +47,13 @@ struct WideNode {
 
 const EMPTY: WideNode = WideNode {
     lo: [[f32::INFINITY; WIDTH]; 3],
-    hi: [[f32::NEG_INFINITY; WIDTH]; 3],
+    hi: [[f32::INFINITY; WIDTH]; 3],
     child: [0; WIDTH],
     count: [0; WIDTH],
 };
 
-/// What a node's child is: a node of the tree, or a leaf's triangle slots.
+/// What a node's child is: a node of the tree, or a leaf's triangle slots (for the tests' walks).
+#[cfg(test)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum RayChild {
     Inner(u32),
@@ -61,16 +66,27 @@ pub(crate) trait Lane:
     Copy + PartialOrd + std::ops::Sub<Output = Self> + std::ops::Mul<Output = Self>
 {
     const ZERO: Self;
+    /// The largest finite value.
+    const LARGEST: Self;
     /// A stored coordinate (exact).
     fn stored(x: f32) -> Self;
     /// `x` rounded up.
     fn above(x: f64) -> Self;
-    /// As `f64` (exact).
-    fn wide(self) -> f64;
+    /// The smaller of two values that are not NaN (as a vector minimum compiles).
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        if other < self { other } else { self }
+    }
+    /// The larger of two values that are not NaN.
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        if other > self { other } else { self }
+    }
 }
 
 impl Lane for f32 {
     const ZERO: f32 = 0.0;
+    const LARGEST: f32 = f32::MAX;
     #[inline(always)]
     fn stored(x: f32) -> f32 {
         x
@@ -79,14 +95,11 @@ impl Lane for f32 {
     fn above(x: f64) -> f32 {
         round_up(x)
     }
-    #[inline(always)]
-    fn wide(self) -> f64 {
-        f64::from(self)
-    }
 }
 
 impl Lane for f64 {
     const ZERO: f64 = 0.0;
+    const LARGEST: f64 = f64::MAX;
     #[inline(always)]
     fn stored(x: f32) -> f64 {
         f64::from(x)
@@ -95,27 +108,24 @@ impl Lane for f64 {
     fn above(x: f64) -> f64 {
         x
     }
-    #[inline(always)]
-    fn wide(self) -> f64 {
-        self
-    }
 }
 
 /// A ray prepared for the slab test in arithmetic `T`, in the frame of the hierarchy.
 ///
-/// A box's slab on axis `j` is crossed between the parameters of its near and far planes; each
-/// plane is moved outwards by a growth `g` (which covers the rounding of the test and of a hit
-/// point), folded into the origin: the near plane `lo - g` (direction positive) is crossed at
-/// `(lo - (o + g)) / d`.
+/// A box's slab on axis `j` is crossed between the parameters of its two planes; each plane is
+/// moved outwards by a growth `g` (which covers the rounding of the test and of a hit point),
+/// folded into the origin: the lower plane `lo - g` is crossed at `(lo - (o + g)) / d`, the upper
+/// `hi + g` at `(hi - (o - g)) / d`, whichever the direction's sign. The nearer of the two is
+/// where the ray enters the slab: the lower's for a positive direction (`lo - g <= hi + g`, and
+/// each rounding is monotonic, so the computed parameters keep that order), the upper's for a
+/// negative one.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Slab<T> {
-    /// Per axis, the origin moved for the near and the far plane.
-    near_origin: [T; 3],
-    far_origin: [T; 3],
+    /// Per axis, the origin moved for the lower plane (`o + g`) and for the upper (`o - g`).
+    lo_origin: [T; 3],
+    hi_origin: [T; 3],
     /// Per axis, the reciprocal of the direction (never infinite: a zero component is tilted).
     inv: [T; 3],
-    /// Per axis, whether the direction is positive (the near plane is the lower bound).
-    positive: [bool; 3],
 }
 
 /// A ray prepared for the slab test (see [`SlabRay::new`]).
@@ -139,7 +149,7 @@ impl SlabRay {
     /// moves the ray by at most `1e-30 t`, and `t <= s` within any box (the dominant coordinate
     /// moves at least `t`), far below the growth. Otherwise double precision, grown by `grow`.
     pub fn new(o: &Vec3, d: &Vec3, grow: f64, extent: f64) -> SlabRay {
-        let s = o.amax() + extent;
+        let s = max_abs(&[o]) + extent;
         if (1e-30..=1e30).contains(&s) {
             let g = grow.max(SINGLE_GROW * s);
             SlabRay::Single(Slab::make(o, d, g, 1e-30, |x| x as f32))
@@ -151,23 +161,14 @@ impl SlabRay {
 
 impl<T: Lane> Slab<T> {
     fn make(o: &Vec3, d: &Vec3, g: f64, tilt: f64, to: impl Fn(f64) -> T) -> Slab<T> {
-        let mut r = Slab {
-            near_origin: [T::ZERO; 3],
-            far_origin: [T::ZERO; 3],
-            inv: [T::ZERO; 3],
-            positive: [true; 3],
-        };
-        for j in 0..3 {
-            // A direction parallel to the slab is tilted (far below the growth): no 0 * inf, so
-            // no NaN.
-            let inv = 1.0 / d[j].abs().max(tilt).copysign(d[j]);
-            let s = if inv > 0.0 { g } else { -g };
-            r.inv[j] = to(inv);
-            r.positive[j] = inv > 0.0;
-            r.near_origin[j] = to(o[j] + s);
-            r.far_origin[j] = to(o[j] - s);
+        // A direction parallel to the slab is tilted (far below the growth): no 0 * inf, so no
+        // NaN.
+        let inv = |j: usize| to(1.0 / d[j].abs().max(tilt).copysign(d[j]));
+        Slab {
+            lo_origin: [0, 1, 2].map(|j| to(o[j] + g)),
+            hi_origin: [0, 1, 2].map(|j| to(o[j] - g)),
+            inv: [0, 1, 2].map(inv),
         }
-        r
     }
 }
 
@@ -275,8 +276,8 @@ impl RayTree {
             tree.collapse(&bin, 0)?;
         }
         drop(bin);
-        // Grown by doubling: keep what is used.
-        tree.nodes = try_copy(&tree.nodes).map_err(|_| Error::OutOfMemory)?;
+        // Grown by doubling: keep what is used, on huge pages.
+        tree.nodes = huge_page_copy(&tree.nodes)?;
         tree.order = order;
         Ok(tree)
     }
@@ -328,8 +329,8 @@ impl RayTree {
         0
     }
 
-    /// Child `k` of node `i` (only for a child [`cut`](RayTree::cut) found crossed).
-    #[inline(always)]
+    /// Child `k` of node `i`.
+    #[cfg(test)]
     pub fn child(&self, i: u32, k: usize) -> RayChild {
         let n = &self.nodes[i as usize];
         match n.count[k] {
@@ -341,35 +342,63 @@ impl RayTree {
         }
     }
 
-    /// Where `ray` enters each child box of node `i`, within `[0, reach]`: the entry parameter,
-    /// or infinity where it misses the box there.
+    /// Asks the processor to bring node `i` into the cache (a hint; nothing on other
+    /// architectures): for a node stacked now and visited later, so that on models larger than
+    /// the caches its loading overlaps other work.
     #[inline(always)]
-    pub fn cut<T: Lane>(&self, i: u32, ray: &Slab<T>, reach: f64) -> [f64; WIDTH] {
+    pub fn prefetch(&self, i: u32) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(n) = self.nodes.get(i as usize) {
+            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+            let p = (n as *const WideNode).cast::<i8>();
+            // SAFETY: prefetching has no effect on memory; `p` and `p + 64` lie in the node (128
+            // bytes, aligned to 64).
+            unsafe {
+                _mm_prefetch::<_MM_HINT_T0>(p);
+                _mm_prefetch::<_MM_HINT_T0>(p.add(64));
+            }
+        }
+    }
+
+    /// The links of node `i`'s children: per child, an inner node's index or a leaf's first
+    /// position in the order, and 0 or the leaf's number of triangles (for children
+    /// [`cut`](RayTree::cut) found crossed).
+    #[inline(always)]
+    pub fn links(&self, i: u32) -> (&[u32; WIDTH], &[u32; WIDTH]) {
+        let n = &self.nodes[i as usize];
+        (&n.child, &n.count)
+    }
+
+    /// Where `ray` enters each child box of node `i` within `[0, reach]` (`reach` finite), and
+    /// the mask of the children it crosses there (bit `k` for child `k`).
+    ///
+    /// Per axis the two planes' parameters are computed and ordered by a minimum and a maximum
+    /// (no choice by the direction's sign). An unused slot's bounds are `+inf`: both its
+    /// parameters are `+inf` (entered beyond any finite `reach`) or both `-inf` (left before 0),
+    /// so it is never crossed. No NaN can arise (the reciprocal is finite and not zero, the moved
+    /// origins finite). A stored box has no lower bound `+inf` and no upper bound `-inf`, so a
+    /// slab's entry is `+inf` only where both its planes' parameters overflow: the ray meets that
+    /// slab only beyond `T::LARGEST`, and no point of the tree (coordinates at most `extent`,
+    /// the ray's dominant direction coordinate at least 1, see [`SlabRay::new`]) lies that far
+    /// along it, so a finite `reach` loses nothing.
+    #[inline(always)]
+    pub fn cut<T: Lane>(&self, i: u32, ray: &Slab<T>, reach: T) -> ([T; WIDTH], u32) {
         let n = &self.nodes[i as usize];
         let mut enter = [T::ZERO; WIDTH];
-        let mut leave = [T::above(reach); WIDTH];
+        let mut leave = [reach; WIDTH];
         for j in 0..3 {
-            let (near, far) = if ray.positive[j] {
-                (&n.lo[j], &n.hi[j])
-            } else {
-                (&n.hi[j], &n.lo[j])
-            };
             for k in 0..WIDTH {
-                // Plain comparisons (no NaN can arise: the reciprocal is finite and not zero, the
-                // moved origins finite), which compile to vector min and max.
-                let t0 = (T::stored(near[k]) - ray.near_origin[j]) * ray.inv[j];
-                let t1 = (T::stored(far[k]) - ray.far_origin[j]) * ray.inv[j];
-                enter[k] = if t0 > enter[k] { t0 } else { enter[k] };
-                leave[k] = if t1 < leave[k] { t1 } else { leave[k] };
+                let t0 = (T::stored(n.lo[j][k]) - ray.lo_origin[j]) * ray.inv[j];
+                let t1 = (T::stored(n.hi[j][k]) - ray.hi_origin[j]) * ray.inv[j];
+                enter[k] = enter[k].max(t0.min(t1));
+                leave[k] = leave[k].min(t0.max(t1));
             }
         }
-        let mut out = [f64::INFINITY; WIDTH];
+        let mut mask = 0;
         for k in 0..WIDTH {
-            if enter[k] <= leave[k] {
-                out[k] = enter[k].wide();
-            }
+            mask |= u32::from(enter[k] <= leave[k]) << k;
         }
-        out
+        (enter, mask)
     }
 
     /// Lower bounds on the squared distance from `p` to each child box of node `i`: per axis the
@@ -409,6 +438,22 @@ impl RayTree {
     pub fn extent(&self) -> f64 {
         self.extent
     }
+}
+
+/// `nodes` copied into a new array, offered huge pages before it is written.
+///
+/// A search on a large model reads nodes scattered over tens of megabytes: with 4 KiB pages,
+/// most of those reads also miss the address translation cache (measured in BENCHMARKS.md
+/// section 27). The whole 2 MiB pages of a fresh allocation of at least two are advised as huge
+/// pages ([`advise_huge_pages`], shared with loading saved models), before the nodes are
+/// written to it.
+fn huge_page_copy(nodes: &[WideNode]) -> Result<Vec<WideNode>, Error> {
+    let mut out: Vec<WideNode> = Vec::new();
+    out.try_reserve_exact(nodes.len())
+        .map_err(|_| Error::OutOfMemory)?;
+    advise_huge_pages(out.as_mut_ptr().cast(), std::mem::size_of_val(nodes));
+    out.extend_from_slice(nodes);
+    Ok(out)
 }
 
 /// Stores child `k` of node `n`: `s`'s box rounded outwards to single precision, and its link.
@@ -584,7 +629,7 @@ mod tests {
                                 seen[s] += 1;
                             }
                         }
-                        RayChild::Inner(c) if lo.x <= hi.x => {
+                        RayChild::Inner(c) if lo.x != f64::INFINITY => {
                             let mut below = vec![0; seen.len()];
                             walk(tree, bvh, c, &mut below);
                             for (s, m) in below.iter().enumerate() {

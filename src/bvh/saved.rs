@@ -226,7 +226,7 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     any(target_arch = "x86_64", target_arch = "aarch64"),
     not(miri)
 ))]
-fn advise_huge_pages(start: *mut u8, len: usize) {
+pub(super) fn advise_huge_pages(start: *mut u8, len: usize) {
     const HUGE: usize = 1 << 21;
     // MADV_HUGEPAGE on these targets (asm-generic/mman-common.h).
     const MADV_HUGEPAGE: std::ffi::c_int = 14;
@@ -256,7 +256,7 @@ fn advise_huge_pages(start: *mut u8, len: usize) {
     any(target_arch = "x86_64", target_arch = "aarch64"),
     not(miri)
 )))]
-fn advise_huge_pages(_start: *mut u8, _len: usize) {}
+pub(super) fn advise_huge_pages(_start: *mut u8, _len: usize) {}
 
 /// The sections of a saved hierarchy of `n` triangles (n >= 1) and `v` vertices, in bytes, in the
 /// order they follow the header; `None` if their sum overflows.

@@ -28,10 +28,10 @@
 //! order of the search.
 
 use super::batch::{Workers, answer_all};
-use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayChild, RayTree, Slab, SlabRay};
+use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayTree, Slab, SlabRay};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::Tri;
-use crate::geometry::predicates::{cross_accurate, exponent, orient2d, pow2, two_prod};
+use crate::geometry::predicates::{cross_accurate, exponent, max_abs, orient2d, pow2, two_prod};
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
 use std::mem::MaybeUninit;
@@ -89,6 +89,11 @@ struct LocalRay {
     kx: usize,
     ky: usize,
     kz: usize,
+    /// The origin's coordinates on axes `kx`, `ky`, `kz`, and the direction's on `kz`.
+    ox: f64,
+    oy: f64,
+    oz: f64,
+    dz: f64,
     /// The shear that makes the ray the third axis: `x' = x - sx z`, `y' = y - sy z`.
     sx: f64,
     sy: f64,
@@ -127,11 +132,16 @@ impl<'a> RayCaster<'a> {
     /// [`MAX_COORDINATE`] coordinate (the direction may be as large as any finite value), and
     /// `Err(InvalidArgument)` if the direction is zero.
     pub(crate) fn check(origin: &Vec3, direction: &Vec3) -> Result<(), Error> {
-        if !origin
-            .iter()
-            .all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE)
-            || !direction.iter().all(|v| v.is_finite())
-        {
+        // Without short circuits (a NaN fails every comparison): a few vector comparisons.
+        let o = origin.abs();
+        let d = direction.abs();
+        let ok = (o.x <= MAX_COORDINATE)
+            & (o.y <= MAX_COORDINATE)
+            & (o.z <= MAX_COORDINATE)
+            & (d.x <= f64::MAX)
+            & (d.y <= f64::MAX)
+            & (d.z <= f64::MAX);
+        if !ok {
             return Err(Error::NonFiniteCoordinate);
         }
         if direction.amax() == 0.0 {
@@ -148,10 +158,16 @@ impl<'a> RayCaster<'a> {
         let r = &self.pose.rotation;
         let o = r.tr_mul(&(origin - self.pose.translation));
         let (d, k2) = unit_scale(&r.tr_mul(&dw));
-        if !o.iter().all(|v| v.is_finite() && v.abs() <= MAX_LOCAL)
-            || !d.iter().all(|v| v.is_finite())
-            || d.amax() == 0.0
-        {
+        // Without short circuits (a NaN fails every comparison).
+        let (oa, da) = (o.abs(), d.abs());
+        let ok = (oa.x <= MAX_LOCAL)
+            & (oa.y <= MAX_LOCAL)
+            & (oa.z <= MAX_LOCAL)
+            & (da.x <= f64::MAX)
+            & (da.y <= f64::MAX)
+            & (da.z <= f64::MAX)
+            & (max_abs(&[&d]) != 0.0);
+        if !ok {
             return None;
         }
         let ray = LocalRay::new(o, d, self.bvh.scale);
@@ -196,6 +212,10 @@ impl LocalRay {
             kx,
             ky,
             kz,
+            ox: o[kx],
+            oy: o[ky],
+            oz: o[kz],
+            dz: d[kz],
             sx: d[kx] / d[kz],
             sy: d[ky] / d[kz],
             grow,
@@ -205,48 +225,62 @@ impl LocalRay {
     /// A vertex in the ray's frame: `(x', y')` across the ray, and `v - o` along the dominant axis.
     #[inline(always)]
     fn project(&self, v: &Vec3) -> [f64; 3] {
-        let a = v - self.o;
-        let z = a[self.kz];
-        [a[self.kx] - self.sx * z, a[self.ky] - self.sy * z, z]
+        let z = v[self.kz] - self.oz;
+        [
+            (v[self.kx] - self.ox) - self.sx * z,
+            (v[self.ky] - self.oy) - self.sy * z,
+            z,
+        ]
     }
 
     /// The ray parameter where it meets triangle `t` (scaled direction's units), if it does at a
     /// parameter `>= 0` (a hit within rounding behind the origin counts as a hit at 0).
-    #[inline]
-    fn hit(&self, t: &Tri) -> Option<f64> {
-        let [a, b, c] = [
-            self.project(&t[0]),
-            self.project(&t[1]),
-            self.project(&t[2]),
-        ];
+    ///
+    /// Most triangles a search tests are missed, and most misses are decided here, inline, by
+    /// two edge functions surely of opposite signs; the rest is [`confirm`](LocalRay::confirm).
+    #[inline(always)]
+    fn hit(&self, t: [&Vec3; 3]) -> Option<f64> {
+        let [a, b, c] = [self.project(t[0]), self.project(t[1]), self.project(t[2])];
         let e = [edge(&b, &c), edge(&c, &a), edge(&a, &b)];
-        // Most misses: one edge function surely negative, another surely positive.
-        let neg = e.iter().any(|&(v, err)| v < -err);
-        let pos = e.iter().any(|&(v, err)| v > err);
+        // Without short circuits: a few vector comparisons rather than branches.
+        let neg = (e[0].0 < -e[0].1) | (e[1].0 < -e[1].1) | (e[2].0 < -e[2].1);
+        let pos = (e[0].0 > e[0].1) | (e[1].0 > e[1].1) | (e[2].0 > e[2].1);
         if neg && pos {
             return None;
         }
+        self.confirm(t, [a, b, c], e)
+    }
+
+    /// [`hit`](LocalRay::hit) past its quick rejection: `p` the projected vertices, `e` the
+    /// filtered edge functions.
+    #[inline(never)]
+    fn confirm(&self, t: [&Vec3; 3], p: [[f64; 3]; 3], e: [(f64, f64); 3]) -> Option<f64> {
+        let [a, b, c] = p;
         let s = [
             edge_sign(e[0], &b, &c),
             edge_sign(e[1], &c, &a),
             edge_sign(e[2], &a, &b),
         ];
         let (neg, pos) = (s.contains(&-1), s.contains(&1));
-        if neg == pos || zero_area(t) {
+        if neg == pos || zero_area(&[*t[0], *t[1], *t[2]]) {
             // Opposite signs (a miss), or all zero (edge-on: its neighbours' edges are hit), or a
             // triangle without area.
             return None;
         }
         let w = weights(&[a, b, c], s);
-        let z = [
-            a[2] / self.d[self.kz],
-            b[2] / self.d[self.kz],
-            c[2] / self.d[self.kz],
-        ];
+        let z = [a[2] / self.dz, b[2] / self.dz, c[2] / self.dz];
         let t = w[0] * z[0] + w[1] * z[1] + w[2] * z[2];
         // The sum's rounding and the z's: a few ulps of the largest.
         let tol = 8.0 * f64::EPSILON * z[0].abs().max(z[1].abs()).max(z[2].abs());
         (t >= -tol).then_some(t.max(0.0))
+    }
+
+    /// [`hit`](LocalRay::hit) on the triangle in leaf slot `slot` of `bvh`.
+    #[inline(always)]
+    fn hit_slot(&self, bvh: &Bvh, slot: usize) -> Option<f64> {
+        let f = &bvh.faces[slot];
+        let v = &bvh.verts;
+        self.hit([&v[f[0] as usize], &v[f[1] as usize], &v[f[2] as usize]])
     }
 
     /// The nearest hit among the triangles of `tree` (the ray layout of `bvh`) at a parameter
@@ -277,24 +311,33 @@ impl LocalRay {
         let mut best: Option<Best> = None;
         // How far a node may start and still be visited: the best hit's parameter (a node starting
         // exactly there may hold a triangle added earlier), grown by a few ulps for the slab test's
-        // last rounding.
-        let reach = |best: &Option<Best>| best.map_or(limit, |b| b.t) * (1.0 + 1e-14);
-        // Nodes still to visit with their entry parameters, the nearest on top: each level of the
-        // tree (at most `MAX_DEPTH`) leaves at most three children behind. Left uninitialised
-        // (zeroing it would cost as much as a short search).
-        let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
+        // last rounding, rounded up to the slab test's arithmetic, and at most its largest finite
+        // value (which `RayTree::cut` needs; no point of the tree lies farther along the ray).
+        // Updated with the best hit.
+        let reach_of = |t: f64| T::above(t * (1.0 + 1e-14)).min(T::LARGEST);
+        let mut reach = reach_of(limit);
+        // Nodes still to visit (link, count as in `RayTree::links`) with their entry parameters,
+        // the nearest on top: each level of the tree (at most `MAX_DEPTH`) leaves at most three
+        // children behind. Left uninitialised (zeroing it would cost as much as a short search).
+        let mut stack = [const { MaybeUninit::<(u32, u32, T)>::uninit() }; 3 * MAX_DEPTH + 4];
         let mut len = 0;
-        let mut node = RayChild::Inner(tree.root());
+        // The node visited: an inner node (`count == 0`) or a leaf's run of the order.
+        let (mut link, mut count) = (tree.root(), 0u32);
         loop {
-            match node {
-                RayChild::Inner(i) => {
-                    let cut = tree.cut(i, slab, reach(&best));
-                    // The crossed children, farthest first: all but the nearest are stacked, the
-                    // nearest is visited next.
-                    let mut crossed = [(0usize, 0.0f64); 4];
-                    let mut n = 0;
-                    for (k, &t) in cut.iter().enumerate() {
-                        if t != f64::INFINITY {
+            if count == 0 {
+                let (enter, mask) = tree.cut(link, slab, reach);
+                if mask != 0 {
+                    let (links, counts) = tree.links(link);
+                    let mut near = mask.trailing_zeros() as usize;
+                    if mask & (mask - 1) != 0 {
+                        // Several crossed: sorted farthest first, all but the nearest stacked.
+                        let mut crossed = [(0usize, T::ZERO); 4];
+                        let mut n = 0;
+                        let mut m = mask;
+                        while m != 0 {
+                            let k = m.trailing_zeros() as usize;
+                            m &= m - 1;
+                            let t = enter[k];
                             let mut j = n;
                             while j > 0 && crossed[j - 1].1 < t {
                                 crossed[j] = crossed[j - 1];
@@ -303,31 +346,33 @@ impl LocalRay {
                             crossed[j] = (k, t);
                             n += 1;
                         }
-                    }
-                    if n > 0 {
                         for &(k, t) in &crossed[..n - 1] {
+                            if counts[k] == 0 {
+                                tree.prefetch(links[k]);
+                            }
                             // Checked indexing: the depth bound keeps it in range.
-                            stack[len] = MaybeUninit::new((tree.child(i, k), t));
+                            stack[len] = MaybeUninit::new((links[k], counts[k], t));
                             len += 1;
                         }
-                        node = tree.child(i, crossed[n - 1].0);
-                        continue;
+                        near = crossed[n - 1].0;
                     }
+                    (link, count) = (links[near], counts[near]);
+                    continue;
                 }
-                RayChild::Leaf { first, count } => {
-                    for j in first..first + count {
-                        let slot = tree.slot(j);
-                        let Some(t) = self.hit(&bvh.tri(slot)) else {
-                            continue;
-                        };
-                        let added = bvh.added[slot];
-                        let better = match best {
-                            None => true,
-                            Some(b) => t < b.t || (t == b.t && added < b.added),
-                        };
-                        if better && accept(t) {
-                            best = Some(Best { t, slot, added });
-                        }
+            } else {
+                for j in link..link + count {
+                    let slot = tree.slot(j);
+                    let Some(t) = self.hit_slot(bvh, slot) else {
+                        continue;
+                    };
+                    let added = bvh.added[slot];
+                    let better = match best {
+                        None => true,
+                        Some(b) => t < b.t || (t == b.t && added < b.added),
+                    };
+                    if better && accept(t) {
+                        best = Some(Best { t, slot, added });
+                        reach = reach_of(t);
                     }
                 }
             }
@@ -338,9 +383,9 @@ impl LocalRay {
                 }
                 len -= 1;
                 // SAFETY: the entries below `len` were written above.
-                let (next, enter) = unsafe { stack[len].assume_init() };
-                if enter <= reach(&best) {
-                    node = next;
+                let (next, n, enter) = unsafe { stack[len].assume_init() };
+                if enter <= reach {
+                    (link, count) = (next, n);
                     break;
                 }
             }
@@ -414,7 +459,7 @@ fn zero_area(t: &Tri) -> bool {
 /// `(b - a) x (c - a)` of a triangle with area, to a few ulps, in some positive scale.
 fn triangle_normal(a: &Vec3, b: &Vec3, c: &Vec3) -> Vec3 {
     let (e1, e2) = (b - a, c - a);
-    let k = pow2((-exponent(e1.amax().max(e2.amax()))).clamp(-1022, 1023));
+    let k = pow2((-exponent(max_abs(&[&e1, &e2]))).clamp(-1022, 1023));
     let n = cross_accurate(&(e1 * k), &(e2 * k));
     if n != Vec3::zeros() {
         return n;
@@ -431,9 +476,10 @@ fn unit(v: &Vec3) -> Vec3 {
     v / v.norm()
 }
 
-/// `v` (not zero) scaled by `2^-k` so that its largest coordinate is in `[1, 2)`, and `k`.
+/// `v` (not zero, no NaN) scaled by `2^-k` so that its largest coordinate is in `[1, 2)`, and
+/// `k`.
 fn unit_scale(v: &Vec3) -> (Vec3, i32) {
-    let m = v.amax();
+    let m = max_abs(&[v]);
     if m == 0.0 || !m.is_finite() {
         return (*v, 0);
     }
@@ -447,6 +493,10 @@ fn unit_scale(v: &Vec3) -> (Vec3, i32) {
 
 /// `x * 2^k`, in steps so that no factor is out of range; it may over- or underflow.
 fn scaled(x: f64, k: i32) -> f64 {
+    if (-1000..=1000).contains(&k) {
+        // The loop's single step.
+        return x * pow2(k);
+    }
     let mut y = x;
     let mut k = k;
     while k != 0 {
@@ -594,25 +644,133 @@ mod tests {
                 } else {
                     f64::INFINITY
                 };
-                let ray = LocalRay::new(o, d, bvh.scale);
-                let tree = bvh.ray_tree().unwrap();
-                let fast = ray
-                    .search(bvh, tree, max_t, |t| t <= max_t)
-                    .map(|b| (b.t, b.slot));
-                let mut brute: Option<(f64, usize, u32)> = None;
-                for slot in 0..bvh.num_tris() {
-                    if let Some(t) = ray.hit(&bvh.tri(slot)) {
-                        let a = bvh.added[slot];
-                        if t <= max_t
-                            && brute.is_none_or(|(bt, _, ba)| t < bt || (t == bt && a < ba))
-                        {
-                            brute = Some((t, slot, a));
-                        }
-                    }
-                }
-                assert_eq!(fast, brute.map(|(t, s, _)| (t, s)), "{o:?} {d:?}");
+                search_equals_brute_force(bvh, o, d, max_t);
             }
         }
+    }
+
+    /// Asserts that the search finds bit for bit what testing every triangle of `bvh` in turn
+    /// finds for the ray `o + t d` (`d`'s largest coordinate in `[1, 2)` or not: the search is
+    /// given it as it is); returns whether it hit.
+    fn search_equals_brute_force(bvh: &Bvh, o: Vec3, d: Vec3, max_t: f64) -> bool {
+        let ray = LocalRay::new(o, d, bvh.scale);
+        let tree = bvh.ray_tree().unwrap();
+        let fast = ray
+            .search(bvh, tree, max_t, |t| t <= max_t)
+            .map(|b| (b.t, b.slot));
+        let mut brute: Option<(f64, usize, u32)> = None;
+        for slot in 0..bvh.num_tris() {
+            if let Some(t) = ray.hit_slot(bvh, slot) {
+                let a = bvh.added[slot];
+                if t <= max_t && brute.is_none_or(|(bt, _, ba)| t < bt || (t == bt && a < ba)) {
+                    brute = Some((t, slot, a));
+                }
+            }
+        }
+        assert_eq!(fast, brute.map(|(t, s, _)| (t, s)), "{o:?} {d:?}");
+        fast.is_some()
+    }
+
+    /// The slab test's boxes lose no hit where rays graze them: rays in the planes of an
+    /// axis-aligned cube's faces, along its edges, through its corners, parallel to an axis or
+    /// nearly (direction components down to 1e-40, below the single-precision test's tilt), at
+    /// scales from 1e-25 to 1e140 (both the single- and the double-precision slab tests), each
+    /// against every triangle tested in turn; and every ray that should hit does.
+    #[test]
+    fn grazing_rays_at_every_scale_lose_nothing() {
+        let mut r = Rng(29);
+        for scale in [1e-25, 1e-9, 1.0, 3e7, 1e25, 1e31, 1e80, 1e140] {
+            // A closed cube [0, s]^3 (12 triangles), and small triangles lying on its faces'
+            // planes and across its edges, whose boxes are flat or thin.
+            let s = scale;
+            let c = |x: f64, y: f64, z: f64| [x * s, y * s, z * s];
+            let mut tris: Vec<[[f64; 3]; 3]> = Vec::new();
+            for axis in 0..3 {
+                for side in [0.0, 1.0] {
+                    let p = |u: f64, v: f64| {
+                        let mut q = [0.0; 3];
+                        q[axis] = side;
+                        q[(axis + 1) % 3] = u;
+                        q[(axis + 2) % 3] = v;
+                        c(q[0], q[1], q[2])
+                    };
+                    tris.push([p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]);
+                    tris.push([p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]);
+                    let (u, v) = (r.range(0.0, 0.9), r.range(0.0, 0.9));
+                    tris.push([p(u, v), p(u + 0.1, v), p(u, v + 0.1)]);
+                }
+            }
+            tris.push([c(1.0, 0.0, 0.0), c(1.0, 1.0, 0.0), c(1.2, 0.5, 0.0)]);
+            tris.push([c(0.0, 1.0, 1.0), c(0.0, 1.0, 0.0), c(0.0, 1.3, 0.5)]);
+            let model =
+                Model::from_triangles(tris.iter().zip(0..).map(|(t, i)| (t[0], t[1], t[2], i)))
+                    .unwrap();
+            let bvh = model.bvh().unwrap();
+            let coordinate = |r: &mut Rng| [0.0, 0.0, 1.0, 1.0, 0.5, r.range(0.0, 1.0)][r.below(6)];
+            let mut hits = 0;
+            for _ in 0..400 {
+                // From outside the cube or on its surface, along an axis, tilted a little off
+                // it, or at a corner's diagonal.
+                let mut o = [0.0; 3].map(|_| coordinate(&mut r));
+                let axis = r.below(3);
+                o[axis] = [-1.0, 0.0, 2.0][r.below(3)];
+                let mut d = [0.0; 3];
+                d[axis] = if o[axis] > 0.5 { -1.0 } else { 1.0 };
+                for (j, dj) in d.iter_mut().enumerate() {
+                    if j != axis && r.below(2) == 0 {
+                        *dj = [1e-40, -1e-40, 1e-20, -1e-7, 1.0][r.below(5)];
+                    }
+                }
+                let o = Vec3::from(c(o[0], o[1], o[2]));
+                let d = Vec3::from(d) * r.log_uniform(1e-3, 1e3);
+                hits += usize::from(search_equals_brute_force(bvh, o, d, f64::INFINITY));
+            }
+            assert!(hits > 100, "{scale}: {hits}");
+            // Straight at the middle of every face, from outside: always a hit.
+            for axis in 0..3 {
+                for (from, dir) in [(-1.0, 1.0), (2.0, -1.0)] {
+                    let mut o = [0.5; 3];
+                    o[axis] = from;
+                    let mut d = [0.0; 3];
+                    d[axis] = dir;
+                    let o = Vec3::from(c(o[0], o[1], o[2]));
+                    assert!(search_equals_brute_force(
+                        bvh,
+                        o,
+                        Vec3::from(d),
+                        f64::INFINITY
+                    ));
+                }
+            }
+        }
+    }
+
+    /// A tree large enough to be offered huge pages: the search equals testing every triangle.
+    #[test]
+    fn large_tree_equals_testing_every_triangle() {
+        // A wavy height field of 2 * 300 * 300 triangles: more than 32,768 nodes of 128 bytes.
+        let n = 300;
+        let h = |i: usize, j: usize| {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            [x, y, 0.05 * (13.0 * x).sin() * (17.0 * y).cos()]
+        };
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                tris.push((h(i, j), h(i + 1, j), h(i + 1, j + 1), tris.len() as i32));
+                tris.push((h(i, j), h(i + 1, j + 1), h(i, j + 1), tris.len() as i32));
+            }
+        }
+        let model = Model::from_triangles(tris).unwrap();
+        let bvh = model.bvh().unwrap();
+        let mut r = Rng(5);
+        let mut hits = 0;
+        for _ in 0..40 {
+            let o = Vec3::new(r.range(-0.2, 1.2), r.range(-0.2, 1.2), r.range(0.3, 1.0));
+            let at = Vec3::new(r.range(0.0, 1.0), r.range(0.0, 1.0), 0.0);
+            hits += usize::from(search_equals_brute_force(bvh, o, at - o, f64::INFINITY));
+        }
+        assert!(hits > 20, "{hits}");
     }
 
     /// A refit drops the ray tree (its boxes are the old vertices'): casts after it see the new
