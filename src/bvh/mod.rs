@@ -27,7 +27,7 @@ mod volume_choice;
 pub(crate) use boundary::{Boundaries, BoundaryLoop, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
 pub(crate) use pqp_view::PqpBv;
-pub(crate) use ray_tree::{Lane, RayTree, Slab, SlabRay};
+pub(crate) use ray_tree::{Lane, RayChild, RayTree, Slab, SlabRay};
 pub use volume_choice::{CollisionVolume, VolumeKind};
 
 use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};

@@ -52,8 +52,8 @@ const EMPTY: WideNode = WideNode {
     count: [0; WIDTH],
 };
 
-/// What a node's child is: a node of the tree, or a leaf's triangle slots (for the tests' walks).
-#[cfg(test)]
+/// What a node's child is: a node of the tree, or a leaf's triangle slots (for the closest-point
+/// search of `query/point.rs` and the tests' walks; ray casts read [`RayTree::links`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum RayChild {
     Inner(u32),
@@ -330,7 +330,7 @@ impl RayTree {
     }
 
     /// Child `k` of node `i`.
-    #[cfg(test)]
+    #[inline(always)]
     pub fn child(&self, i: u32, k: usize) -> RayChild {
         let n = &self.nodes[i as usize];
         match n.count[k] {
