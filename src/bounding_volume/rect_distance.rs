@@ -160,9 +160,34 @@ struct Corners {
 
 /// The least of `best` and the squared distances of the edges of each rectangle to the other.
 /// Apart from the rest of the kernel (which rarely gets here), so that its registers do not
-/// weigh on the common paths.
-#[inline(never)]
+/// weigh on the common paths; compiled for AVX2 too, as the kernel (see `use_avx2`).
+#[inline(always)]
 fn edges<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if crate::math::use_avx2() {
+        // SAFETY: the processor has AVX2.
+        return unsafe { edges_avx2::<ALL>(b, a, best) };
+    }
+    edges_portable::<ALL>(b, a, best)
+}
+
+/// [`edges_body`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline(never)]
+fn edges_avx2<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
+    edges_body::<ALL>(b, a, best)
+}
+
+/// [`edges_body`] for any processor.
+#[inline(never)]
+fn edges_portable<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
+    edges_body::<ALL>(b, a, best)
+}
+
+/// What [`edges`] computes.
+#[inline(always)]
+fn edges_body<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
     // The edges of b against a, then those of a against b (unrolled: each call site keeps its
     // own branch history). Without `ALL`, it stops at the first edge below `best`.
     let mut m = edge_min(&b.p[0], &b.u, &b.o[0], &b.o[1], b.l, best);

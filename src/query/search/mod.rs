@@ -124,6 +124,42 @@ impl<'a> ClosestSearch<'a> {
         fixed_cutoff: bool,
         front: Option<(&[FrontPair], Motion)>,
     ) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::math::use_avx2() {
+            // SAFETY: the processor has AVX2.
+            return unsafe { self.run_avx2(search, auto, cutoff, stop, fixed_cutoff, front) };
+        }
+        self.run_body(search, auto, cutoff, stop, fixed_cutoff, front)
+    }
+
+    /// [`run_body`](ClosestSearch::run_body) compiled for AVX2, with the search loops and the
+    /// visits inlined into it (the bounds' kernel is called: it has a copy of its own).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn run_avx2(
+        &mut self,
+        search: &Search,
+        auto: Strategy,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+        fixed_cutoff: bool,
+        front: Option<(&[FrontPair], Motion)>,
+    ) {
+        self.run_body(search, auto, cutoff, stop, fixed_cutoff, front)
+    }
+
+    /// What [`run`](ClosestSearch::run) runs.
+    #[inline(always)]
+    fn run_body(
+        &mut self,
+        search: &Search,
+        auto: Strategy,
+        cutoff: impl Fn(f64) -> f64 + Copy,
+        stop: impl Fn(f64) -> bool + Copy,
+        fixed_cutoff: bool,
+        front: Option<(&[FrontPair], Motion)>,
+    ) {
         if stop(self.best.d) {
             return;
         }
@@ -172,6 +208,118 @@ impl<'a> ClosestSearch<'a> {
                 // Out of memory: no front this time (it only saves work).
                 self.front = None;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Search;
+    use crate::math::{Pose, portable_only};
+    use crate::model::Model;
+    use crate::query::{
+        DistanceOptions, DistanceResult, ToleranceResult, distance_into, tolerance_into,
+    };
+    use crate::test_rng::{Random, Rng};
+
+    /// A closed-ish blob: a UV sphere of radius `r` with bumps, `lat` x `lon` quads.
+    fn blob(r: f64, lat: usize, lon: usize, bump: f64) -> Model {
+        let pi = std::f64::consts::PI;
+        let p = |i: usize, j: usize| {
+            let (t, f) = (pi * i as f64 / lat as f64, 2.0 * pi * j as f64 / lon as f64);
+            let rr = r * (1.0 + bump * (3.0 * t).sin() * (5.0 * f).cos());
+            [rr * t.sin() * f.cos(), rr * t.sin() * f.sin(), rr * t.cos()]
+        };
+        let mut tris = Vec::new();
+        for i in 0..lat {
+            for j in 0..lon {
+                let id = tris.len() as i32;
+                tris.push((p(i, j), p(i + 1, j), p(i + 1, j + 1), id));
+                tris.push((p(i, j), p(i + 1, j + 1), p(i, j + 1), id + 1));
+            }
+        }
+        Model::from_triangles(tris).unwrap()
+    }
+
+    /// Every answer and every count of the distance and tolerance queries, exact or not, from a
+    /// fresh result or along a path that reuses it (front tracking), is bit for bit the same from
+    /// the copies compiled for AVX2 and from the portable ones (the same where the processor has
+    /// no AVX2: both sides run the portable copies).
+    #[test]
+    fn avx2_and_portable_copies_answer_alike() {
+        let (a, b) = (blob(1.0, 12, 24, 0.1), blob(0.7, 10, 20, 0.2));
+        let mut rng = Rng(41);
+        let rot = |rng: &mut Rng| {
+            let axis = nalgebra::Unit::new_normalize(crate::math::Vec3::new(
+                rng.signed(),
+                rng.signed(),
+                rng.signed() + 1e-3,
+            ));
+            nalgebra::Rotation3::from_axis_angle(&axis, 3.0 * rng.signed()).into_inner()
+        };
+        let mut poses = Vec::new();
+        let (r0, t0) = (rot(&mut rng), [rng.signed(), rng.signed(), rng.signed()]);
+        for k in 0..60 {
+            // Random poses, then a short smooth path (nested, touching, apart).
+            let (r, t) = if k < 30 {
+                let s = [0.0, 0.5, 2.0, 4.0][k % 4];
+                (rot(&mut rng), [s * rng.signed(), s * rng.signed(), s])
+            } else {
+                let step = (k - 30) as f64 * 0.01;
+                let turn = nalgebra::Rotation3::from_euler_angles(step, 0.5 * step, 0.0);
+                (turn.into_inner() * r0, [t0[0] + step, t0[1], t0[2] + 1.8])
+            };
+            let m: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| r[(i, j)]));
+            poses.push(Pose::new(m, t));
+        }
+        let options = [
+            DistanceOptions::exact(),
+            DistanceOptions::approximate(0.1, f64::INFINITY),
+            DistanceOptions::approximate(0.0, 0.05),
+        ];
+        let run = || {
+            let mut out = Vec::new();
+            for o in &options {
+                let mut r = DistanceResult::new();
+                for p in &poses {
+                    distance_into(&mut r, &a, &Pose::identity(), &b, p, o).unwrap();
+                    out.push((r.distance.to_bits(), r.p1, r.p2, r.tri1, r.tri2));
+                    let work = (r.stats.bv_tests, r.stats.tri_tests as i32);
+                    out.push((work.0, r.p1, r.p2, work.1, 0));
+                }
+            }
+            let mut t = ToleranceResult::default();
+            for p in &poses {
+                for tol in [0.01, 0.3] {
+                    tolerance_into(
+                        &mut t,
+                        &a,
+                        &Pose::identity(),
+                        &b,
+                        p,
+                        tol,
+                        &Search::default(),
+                    )
+                    .unwrap();
+                    out.push((
+                        t.distance.to_bits(),
+                        t.p1,
+                        t.p2,
+                        i32::from(t.closer_than_tolerance),
+                        t.stats.bv_tests as i32,
+                    ));
+                }
+            }
+            out
+        };
+        let fast = run();
+        let portable = portable_only(run);
+        assert_eq!(fast.len(), portable.len());
+        for (i, (x, y)) in fast.iter().zip(&portable).enumerate() {
+            assert!(
+                x.0 == y.0 && x.1 == y.1 && x.2 == y.2 && x.3 == y.3 && x.4 == y.4,
+                "answer {i}: {x:?} against {y:?}"
+            );
         }
     }
 }
