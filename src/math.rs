@@ -176,6 +176,33 @@ pub(crate) fn use_avx2() -> bool {
     }
 }
 
+/// Runs `f` in a copy compiled for AVX2 when [`use_avx2`] says so, else in a portable copy:
+/// each a function of its own (never inlined: one copy of a kernel serves all its callers), into
+/// which `f`, and what it inlines, is inlined.
+#[inline(always)]
+pub(crate) fn avx2_or_portable<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if use_avx2() {
+        // SAFETY: the processor has AVX2.
+        return unsafe { in_avx2(f) };
+    }
+    in_portable(f)
+}
+
+/// See [`avx2_or_portable`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline(never)]
+fn in_avx2<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+/// See [`avx2_or_portable`].
+#[inline(never)]
+fn in_portable<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
 #[cfg(test)]
 thread_local! {
     static PORTABLE_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };

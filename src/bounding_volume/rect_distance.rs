@@ -18,7 +18,7 @@
 //! go through the edges, and an edge is looked at only if a bound from its ends' offsets leaves it
 //! room to beat the best corner.
 
-use crate::math::{Mat3, Vec3, least, most};
+use crate::math::{Mat3, Vec3, avx2_or_portable, least, most};
 
 /// Distance between two rectangles (or less, see `cutoff` and `enough` below), with a separating
 /// axis that shows it.
@@ -160,29 +160,13 @@ struct Corners {
 
 /// The least of `best` and the squared distances of the edges of each rectangle to the other.
 /// Apart from the rest of the kernel (which rarely gets here), so that its registers do not
-/// weigh on the common paths; compiled for AVX2 too, as the kernel (see `use_avx2`).
+/// weigh on the common paths; compiled for AVX2 too, as the kernel (see `math::use_avx2`).
 #[inline(always)]
 fn edges<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
-    #[cfg(target_arch = "x86_64")]
-    if crate::math::use_avx2() {
-        // SAFETY: the processor has AVX2.
-        return unsafe { edges_avx2::<ALL>(b, a, best) };
-    }
-    edges_portable::<ALL>(b, a, best)
-}
-
-/// [`edges_body`] compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline(never)]
-fn edges_avx2<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
-    edges_body::<ALL>(b, a, best)
-}
-
-/// [`edges_body`] for any processor.
-#[inline(never)]
-fn edges_portable<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
-    edges_body::<ALL>(b, a, best)
+    avx2_or_portable(
+        #[inline(always)]
+        move || edges_body::<ALL>(b, a, best),
+    )
 }
 
 /// What [`edges`] computes.

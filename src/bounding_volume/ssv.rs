@@ -12,7 +12,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, frame_from};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, avx2_or_portable, frame_from};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -216,38 +216,10 @@ impl Ssv {
         cutoff: f64,
         exact: bool,
     ) -> (f64, Vec3) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::math::use_avx2() {
-            // SAFETY: the processor has AVX2.
-            return unsafe { Ssv::cores_distance_avx2(a, b, enough, cutoff, exact) };
-        }
-        Ssv::cores_distance_portable(a, b, enough, cutoff, exact)
-    }
-
-    /// [`cores_distance_body`](Ssv::cores_distance_body) compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[inline(never)]
-    fn cores_distance_avx2(
-        a: &Ssv,
-        b: &CompactSsv,
-        enough: f64,
-        cutoff: f64,
-        exact: bool,
-    ) -> (f64, Vec3) {
-        Ssv::cores_distance_body(a, b, enough, cutoff, exact)
-    }
-
-    /// [`cores_distance_body`](Ssv::cores_distance_body) for any processor.
-    #[inline(never)]
-    fn cores_distance_portable(
-        a: &Ssv,
-        b: &CompactSsv,
-        enough: f64,
-        cutoff: f64,
-        exact: bool,
-    ) -> (f64, Vec3) {
-        Ssv::cores_distance_body(a, b, enough, cutoff, exact)
+        avx2_or_portable(
+            #[inline(always)]
+            move || Ssv::cores_distance_body(a, b, enough, cutoff, exact),
+        )
     }
 
     /// The kernel of [`cores_distance_here`](Ssv::cores_distance_here).
@@ -550,6 +522,7 @@ impl OverlapVolume for Ssv {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::portable_only;
     use crate::test_rng::Lcg;
     use nalgebra::{Rotation3, Unit};
 
@@ -618,13 +591,10 @@ mod tests {
     }
 
     /// The kernel's copy compiled for AVX2 gives the same bits as the portable one (value and
-    /// axis), for every kind of core, with and without a cutoff, `enough` or exact answers.
-    #[cfg(target_arch = "x86_64")]
+    /// axis), for every kind of core, with and without a cutoff, `enough` or exact answers (where
+    /// the processor has no AVX2, both are the portable one).
     #[test]
     fn kernel_copies_agree() {
-        if !crate::math::use_avx2() {
-            return;
-        }
         let mut rng = Lcg(11);
         let mut f = move || rng.signed();
         for k in 0..20000 {
@@ -649,9 +619,8 @@ mod tests {
             let cutoff = [f64::INFINITY, 0.1, 0.5, 1.0][k % 4];
             let enough = [0.0, 0.2][k % 2];
             let exact = k % 3 != 0;
-            let x = Ssv::cores_distance_portable(&a, &b, enough, cutoff, exact);
-            // SAFETY: checked above.
-            let y = unsafe { Ssv::cores_distance_avx2(&a, &b, enough, cutoff, exact) };
+            let kernel = || Ssv::cores_distance_here(&a, &b, enough, cutoff, exact);
+            let (x, y) = (portable_only(kernel), kernel());
             assert_eq!(x.0.to_bits(), y.0.to_bits(), "case {k}");
             assert_eq!(x.1.map(f64::to_bits), y.1.map(f64::to_bits), "case {k}");
         }

@@ -27,7 +27,7 @@ impl ClosestSearch<'_> {
     /// cutoff stays put. (Figures: BENCHMARKS.md, section 8.)
     ///
     /// [`visit_unordered`]: ClosestSearch::visit_unordered
-    // Each strategy is inlined into both copies of `run` (see `run_avx2`).
+    // Each strategy is inlined into both copies of `run` (see `math::avx2_or_portable`).
     #[inline(always)]
     pub(super) fn depth_first(
         &mut self,
