@@ -156,6 +156,69 @@ pub(crate) fn most(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
+/// Whether the distance search may run its copies compiled for AVX2 (x86-64 processors since
+/// about 2013; the check is a cached flag). Those copies do the same IEEE operations in the same
+/// order as the portable ones (Rust never fuses a multiply and an add on its own), so every answer
+/// and count is bit for bit the same either way; they only take fewer instructions (three-operand
+/// forms, fewer register copies and spills). Measured: BENCHMARKS.md, section 24.
+#[inline(always)]
+pub(crate) fn use_avx2() -> bool {
+    #[cfg(test)]
+    if PORTABLE_ONLY.with(std::cell::Cell::get) {
+        return false;
+    }
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Runs `f` in a copy compiled for AVX2 when [`use_avx2`] says so, else in a portable copy:
+/// each a function of its own (never inlined: one copy of a kernel serves all its callers), into
+/// which `f`, and what it inlines, is inlined.
+#[inline(always)]
+pub(crate) fn avx2_or_portable<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if use_avx2() {
+        // SAFETY: the processor has AVX2.
+        return unsafe { in_avx2(f) };
+    }
+    in_portable(f)
+}
+
+/// See [`avx2_or_portable`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline(never)]
+fn in_avx2<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+/// See [`avx2_or_portable`].
+#[inline(never)]
+fn in_portable<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+#[cfg(test)]
+thread_local! {
+    static PORTABLE_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` on this thread with the portable copies only (see [`use_avx2`]), to compare them with
+/// the others.
+#[cfg(test)]
+pub(crate) fn portable_only<R>(f: impl FnOnce() -> R) -> R {
+    PORTABLE_ONLY.with(|p| p.set(true));
+    let r = f();
+    PORTABLE_ONLY.with(|p| p.set(false));
+    r
+}
+
 /// How far a matrix may be from orthonormal and still be taken as a rotation by
 /// [`nearest_rotation`]: each of its singular values within this of 1. Rotations written with 6
 /// significant digits (the shared `.path` files) are within 1e-6 (torus1.path: 9.5e-7 at most).

@@ -18,7 +18,7 @@
 //! go through the edges, and an edge is looked at only if a bound from its ends' offsets leaves it
 //! room to beat the best corner.
 
-use crate::math::{Mat3, Vec3, least, most};
+use crate::math::{Mat3, Vec3, avx2_or_portable, least, most};
 
 /// Distance between two rectangles (or less, see `cutoff` and `enough` below), with a separating
 /// axis that shows it.
@@ -160,9 +160,18 @@ struct Corners {
 
 /// The least of `best` and the squared distances of the edges of each rectangle to the other.
 /// Apart from the rest of the kernel (which rarely gets here), so that its registers do not
-/// weigh on the common paths.
-#[inline(never)]
+/// weigh on the common paths; compiled for AVX2 too, as the kernel (see `math::use_avx2`).
+#[inline(always)]
 fn edges<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
+    avx2_or_portable(
+        #[inline(always)]
+        move || edges_body::<ALL>(b, a, best),
+    )
+}
+
+/// What [`edges`] computes.
+#[inline(always)]
+fn edges_body<const ALL: bool>(b: &Corners, a: &Corners, best: f64) -> f64 {
     // The edges of b against a, then those of a against b (unrolled: each call site keeps its
     // own branch history). Without `ALL`, it stops at the first edge below `best`.
     let mut m = edge_min(&b.p[0], &b.u, &b.o[0], &b.o[1], b.l, best);

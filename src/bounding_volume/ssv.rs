@@ -12,7 +12,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, frame_from};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, avx2_or_portable, frame_from};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -205,10 +205,26 @@ impl Ssv {
     /// As [`cores_distance`](Ssv::cores_distance) for two volumes in the same frame, with an axis
     /// along which the cores are at least the returned value apart (see `rect_distance`), in the
     /// frame of `a`'s axes; zero when there is none (and for pairs with a point or two segments,
-    /// which the default volumes never meet). Not inlined: one copy of the kernel serves every
-    /// caller and stays in the instruction cache.
-    #[inline(never)]
+    /// which the default volumes never meet). The copy compiled for AVX2 where the processor has
+    /// it (see `math::use_avx2`), else the portable one; neither is inlined: one copy of the kernel
+    /// serves every caller and stays in the instruction cache.
+    #[inline(always)]
     fn cores_distance_here(
+        a: &Ssv,
+        b: &CompactSsv,
+        enough: f64,
+        cutoff: f64,
+        exact: bool,
+    ) -> (f64, Vec3) {
+        avx2_or_portable(
+            #[inline(always)]
+            move || Ssv::cores_distance_body(a, b, enough, cutoff, exact),
+        )
+    }
+
+    /// The kernel of [`cores_distance_here`](Ssv::cores_distance_here).
+    #[inline(always)]
+    fn cores_distance_body(
         a: &Ssv,
         b: &CompactSsv,
         enough: f64,
@@ -506,6 +522,7 @@ impl OverlapVolume for Ssv {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::portable_only;
     use crate::test_rng::Lcg;
     use nalgebra::{Rotation3, Unit};
 
@@ -571,6 +588,42 @@ mod tests {
             }
         }
         assert!(given > cases / 2, "{given} of {cases}");
+    }
+
+    /// The kernel's copy compiled for AVX2 gives the same bits as the portable one (value and
+    /// axis), for every kind of core, with and without a cutoff, `enough` or exact answers (where
+    /// the processor has no AVX2, both are the portable one).
+    #[test]
+    fn kernel_copies_agree() {
+        let mut rng = Lcg(11);
+        let mut f = move || rng.signed();
+        for k in 0..20000 {
+            let axes = |f: &mut dyn FnMut() -> f64| -> Mat3 {
+                let axis = Unit::new_normalize(Vec3::new(f(), f(), f() + 1e-3));
+                Rotation3::from_axis_angle(&axis, 3.0 * f()).into_inner()
+            };
+            let side = |f: &mut dyn FnMut() -> f64, zero: bool| if zero { 0.0 } else { f().abs() };
+            let a = Ssv {
+                axes: axes(&mut f),
+                origin: Vec3::new(f(), f(), f()) * 0.5,
+                lengths: [side(&mut f, k % 9 == 0), side(&mut f, k % 5 == 0)],
+                radius: 0.05 * f().abs(),
+            };
+            let b = Ssv {
+                axes: axes(&mut f),
+                origin: Vec3::new(f(), f(), f()) * [0.2, 1.0, 3.0][k % 3],
+                lengths: [side(&mut f, k % 11 == 0), side(&mut f, k % 4 == 0)],
+                radius: 0.0,
+            }
+            .compact();
+            let cutoff = [f64::INFINITY, 0.1, 0.5, 1.0][k % 4];
+            let enough = [0.0, 0.2][k % 2];
+            let exact = k % 3 != 0;
+            let kernel = || Ssv::cores_distance_here(&a, &b, enough, cutoff, exact);
+            let (x, y) = (portable_only(kernel), kernel());
+            assert_eq!(x.0.to_bits(), y.0.to_bits(), "case {k}");
+            assert_eq!(x.1.map(f64::to_bits), y.1.map(f64::to_bits), "case {k}");
+        }
     }
 
     /// A triangle's volume has an orthonormal frame and contains the triangle whatever its

@@ -28,7 +28,7 @@ use super::traversal::NodePair;
 use crate::bounding_volume::Ssv;
 use crate::bvh::Bvh;
 use crate::geometry::{Plane, Tri};
-use crate::math::{RelPose, Vec3};
+use crate::math::{RelPose, Vec3, avx2_or_portable};
 
 /// The closest triangle pair found so far, with its points in model 1's frame.
 #[derive(Clone, Copy, Debug)]
@@ -124,22 +124,31 @@ impl<'a> ClosestSearch<'a> {
         fixed_cutoff: bool,
         front: Option<(&[FrontPair], Motion)>,
     ) {
-        if stop(self.best.d) {
-            return;
-        }
-        let strategy = search.resolve(auto);
-        if let (Strategy::Priority, Some((front, motion))) = (strategy, front) {
-            return self.priority(None, front, Some(motion), search.qsize, cutoff, stop);
-        }
-        self.stats.bv_tests += 1;
-        let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
-        match strategy {
-            Strategy::Auto | Strategy::DepthFirst => {
-                self.depth_first(root, cutoff, stop, fixed_cutoff);
-            }
-            Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
-            Strategy::Priority => self.priority(Some(root), &[], None, search.qsize, cutoff, stop),
-        }
+        // The search loops and the visits are inlined here, and this into the copy compiled for
+        // AVX2 (or the portable one); the bounds' kernel is called: it has copies of its own.
+        avx2_or_portable(
+            #[inline(always)]
+            move || {
+                if stop(self.best.d) {
+                    return;
+                }
+                let strategy = search.resolve(auto);
+                if let (Strategy::Priority, Some((front, motion))) = (strategy, front) {
+                    return self.priority(None, front, Some(motion), search.qsize, cutoff, stop);
+                }
+                self.stats.bv_tests += 1;
+                let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
+                match strategy {
+                    Strategy::Auto | Strategy::DepthFirst => {
+                        self.depth_first(root, cutoff, stop, fixed_cutoff);
+                    }
+                    Strategy::BreadthFirst => self.breadth_first(root, cutoff, stop),
+                    Strategy::Priority => {
+                        self.priority(Some(root), &[], None, search.qsize, cutoff, stop)
+                    }
+                }
+            },
+        )
     }
 
     /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).
@@ -172,6 +181,113 @@ impl<'a> ClosestSearch<'a> {
                 // Out of memory: no front this time (it only saves work).
                 self.front = None;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Search;
+    use crate::math::{Pose, portable_only};
+    use crate::model::Model;
+    use crate::query::{
+        DistanceOptions, DistanceResult, ToleranceResult, distance_into, tolerance_into,
+    };
+    use crate::test_rng::{Random, Rng};
+
+    /// `n` random small triangles near the sphere of radius `r` about the origin.
+    fn shell(rng: &mut Rng, n: usize, r: f64) -> Model {
+        let tris = (0..n).map(|i| {
+            let d = crate::math::Vec3::new(rng.signed(), rng.signed(), rng.signed()).normalize();
+            let mut corner = || {
+                let p =
+                    d * r + crate::math::Vec3::new(rng.signed(), rng.signed(), rng.signed()) * 0.15;
+                [p.x, p.y, p.z]
+            };
+            (corner(), corner(), corner(), i as i32)
+        });
+        Model::from_triangles(tris.collect::<Vec<_>>()).unwrap()
+    }
+
+    /// Every answer and every count of the distance and tolerance queries, exact or not, from a
+    /// fresh result or along a path that reuses it (front tracking), is bit for bit the same from
+    /// the copies compiled for AVX2 and from the portable ones (the same where the processor has
+    /// no AVX2: both sides run the portable copies).
+    #[test]
+    fn avx2_and_portable_copies_answer_alike() {
+        let mut rng = Rng(41);
+        let (a, b) = (shell(&mut rng, 400, 1.0), shell(&mut rng, 300, 0.7));
+        let rot = |rng: &mut Rng| {
+            let axis = nalgebra::Unit::new_normalize(crate::math::Vec3::new(
+                rng.signed(),
+                rng.signed(),
+                rng.signed() + 1e-3,
+            ));
+            nalgebra::Rotation3::from_axis_angle(&axis, 3.0 * rng.signed()).into_inner()
+        };
+        let mut poses = Vec::new();
+        let (r0, t0) = (rot(&mut rng), [rng.signed(), rng.signed(), rng.signed()]);
+        for k in 0..60 {
+            // Random poses, then a short smooth path (nested, touching, apart).
+            let (r, t) = if k < 30 {
+                let s = [0.0, 0.5, 2.0, 4.0][k % 4];
+                (rot(&mut rng), [s * rng.signed(), s * rng.signed(), s])
+            } else {
+                let step = (k - 30) as f64 * 0.01;
+                let turn = nalgebra::Rotation3::from_euler_angles(step, 0.5 * step, 0.0);
+                (turn.into_inner() * r0, [t0[0] + step, t0[1], t0[2] + 1.8])
+            };
+            let m: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| r[(i, j)]));
+            poses.push(Pose::new(m, t));
+        }
+        let options = [
+            DistanceOptions::exact(),
+            DistanceOptions::approximate(0.1, f64::INFINITY),
+            DistanceOptions::approximate(0.0, 0.05),
+        ];
+        let run = || {
+            let mut out = Vec::new();
+            for o in &options {
+                let mut r = DistanceResult::new();
+                for p in &poses {
+                    distance_into(&mut r, &a, &Pose::identity(), &b, p, o).unwrap();
+                    out.push((r.distance.to_bits(), r.p1, r.p2, r.tri1, r.tri2));
+                    let work = (r.stats.bv_tests, r.stats.tri_tests as i32);
+                    out.push((work.0, r.p1, r.p2, work.1, 0));
+                }
+            }
+            let mut t = ToleranceResult::default();
+            for p in &poses {
+                for tol in [0.01, 0.3] {
+                    tolerance_into(
+                        &mut t,
+                        &a,
+                        &Pose::identity(),
+                        &b,
+                        p,
+                        tol,
+                        &Search::default(),
+                    )
+                    .unwrap();
+                    out.push((
+                        t.distance.to_bits(),
+                        t.p1,
+                        t.p2,
+                        i32::from(t.closer_than_tolerance),
+                        t.stats.bv_tests as i32,
+                    ));
+                }
+            }
+            out
+        };
+        let fast = run();
+        let portable = portable_only(run);
+        assert_eq!(fast.len(), portable.len());
+        for (i, (x, y)) in fast.iter().zip(&portable).enumerate() {
+            assert!(
+                x.0 == y.0 && x.1 == y.1 && x.2 == y.2 && x.3 == y.3 && x.4 == y.4,
+                "answer {i}: {x:?} against {y:?}"
+            );
         }
     }
 }

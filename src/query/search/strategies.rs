@@ -27,6 +27,8 @@ impl ClosestSearch<'_> {
     /// cutoff stays put. (Figures: BENCHMARKS.md, section 8.)
     ///
     /// [`visit_unordered`]: ClosestSearch::visit_unordered
+    // Each strategy is inlined into both copies of `run` (see `math::avx2_or_portable`).
+    #[inline(always)]
     pub(super) fn depth_first(
         &mut self,
         root: NodePair,
@@ -74,6 +76,7 @@ impl ClosestSearch<'_> {
     }
 
     /// Level by level, through a first-in first-out queue.
+    #[inline(always)]
     pub(super) fn breadth_first(
         &mut self,
         root: NodePair,
@@ -120,6 +123,7 @@ impl ClosestSearch<'_> {
     /// bounds were computed before `motion`: a seed whose bound less the motion of its points (along
     /// its separating axis when it has one) is still beyond the cutoff is pruned at once, the
     /// others are tested first.
+    #[inline(always)]
     pub(super) fn priority(
         &mut self,
         root: Option<NodePair>,

@@ -79,7 +79,7 @@ impl ClosestSearch<'_> {
     /// pairs, as if a leaf pair; against a node of a leaf and an inner node (when no front is
     /// kept), the leaf pair does, and the other child comes back with a placeholder at an
     /// infinite bound for the second (see [`depth_first`](ClosestSearch::depth_first)).
-    #[inline]
+    #[inline(always)]
     pub(super) fn visit_unordered(
         &mut self,
         p: &NodePair,
