@@ -2,11 +2,16 @@
 //! triangles' corners, split across the axis of largest spread at the mean of the triangle
 //! centroids.
 //!
-//! What makes it quick: the covariance is summed from per-triangle moments (one record per
-//! triangle, not three corners; see `principal_axes.rs`); the volumes are fitted around the node's
-//! distinct vertices (in a mesh about a sixth of its corners: a vertex is shared by about six
-//! triangles), which give the same box and, up to the order points are met in, the same swept
-//! sphere volume; the triangles are partitioned in place; and nothing is allocated per node.
+//! What makes it quick: everything a node computes is taken from its distinct vertices (in a mesh
+//! about a sixth of its corners: a vertex is shared by about six triangles), found with a
+//! per-thread stamp array as the parent splits: the covariance of the corners is the covariance of
+//! the distinct vertices weighted by how many of the node's corners each is; the volumes fitted
+//! around them are the same box and, up to the order points are met in, the same swept sphere
+//! volume; and a triangle's split key is the sum of its three vertices' coordinates along the axis,
+//! read from the points already taken into the node's frame. So the triangles themselves are only
+//! 16-byte records (vertex indices and position as added), partitioned in place: at every level
+//! the build moves a fifth of the bytes a record of moments would take. Nothing is allocated per
+//! node.
 //!
 //! Nodes are numbered in pre-order (a node, its first child's subtree, its second child's; the
 //! first child is the side of the split with more triangles):
@@ -16,7 +21,7 @@
 //! thread count.
 
 use super::build_threads::{GRAIN, Pool};
-use super::principal_axes::{TriMoments, axes_of, covariance};
+use super::principal_axes::{axes_of, weighted_covariance};
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
@@ -32,11 +37,10 @@ const MEAN_SPLIT_MAX_DEPTH: usize = 40;
 pub(crate) const MAX_DEPTH: usize = MEAN_SPLIT_MAX_DEPTH + 33;
 
 /// What the build keeps of a triangle, permuted in place into leaf order as nodes split: a node's
-/// triangles are always one contiguous run of these.
+/// triangles are always one contiguous run of these. 16 bytes: what the node needs of the
+/// triangle's geometry it reads through its vertices.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Record {
-    /// Its moments (centroid and corner scatter), for the covariance and the split key.
-    moments: TriMoments,
     /// Its vertices, indices into the distinct vertices of the input.
     face: [u32; 3],
     /// Its position among the triangles as added: becomes `Bvh::added`.
@@ -53,7 +57,8 @@ pub(super) struct Input<'a> {
 
 /// A subtree to build: its triangles' records, the slots of its inner nodes (`recs.len() - 1`,
 /// the first its root's), the index of the first of those slots and of its first triangle in leaf
-/// order, its depth, and its root's distinct vertices (indices into `Input::verts`).
+/// order, its depth, its root's distinct vertices (indices into `Input::verts`) with how many of
+/// its triangles' corners each is, and its parent's frame (where the root's eigensolver starts).
 pub(super) struct Subtree<'a> {
     pub recs: &'a mut [Record],
     pub nodes: &'a mut [Node],
@@ -61,18 +66,24 @@ pub(super) struct Subtree<'a> {
     pub first_leaf: usize,
     pub depth: usize,
     pub verts: Vec<u32>,
+    pub counts: Vec<u32>,
+    pub frame: Mat3,
 }
 
 /// One builder's scratch, reused from node to node: the vertex stamps that find a node's distinct
-/// vertices (the index of the node that last listed each vertex), the node's points, the same in
-/// its frame, its triangles' split keys, and a stack of vertex lists (each node's, along the path
-/// from the subtree's root).
+/// vertices (the index of the node that last listed each vertex), each vertex's position in the
+/// list that last listed it (valid for the node being built: its list was made just before), the
+/// node's points, the same in its frame, its triangles' split keys, and a stack of vertex lists
+/// (each node's, along the path from the subtree's root) with, alongside, how many of the node's
+/// corners each vertex is.
 pub(super) struct Scratch {
     stamps: Vec<u32>,
+    pos: Vec<u32>,
     points: Vec<Vec3>,
     local: Vec<Vec3>,
     keys: Vec<f64>,
     lists: Vec<u32>,
+    counts: Vec<u32>,
 }
 
 impl Scratch {
@@ -81,12 +92,17 @@ impl Scratch {
         let mut stamps = Vec::new();
         stamps.try_reserve_exact(num_verts).map_err(oom)?;
         stamps.resize(num_verts, u32::MAX);
+        let mut pos = Vec::new();
+        pos.try_reserve_exact(num_verts).map_err(oom)?;
+        pos.resize(num_verts, 0);
         Ok(Scratch {
             stamps,
+            pos,
             points: Vec::new(),
             local: Vec::new(),
             keys: Vec::new(),
             lists: Vec::new(),
+            counts: Vec::new(),
         })
     }
 }
@@ -119,16 +135,10 @@ impl Bvh {
         let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3])?;
         let mut recs: Vec<Record> = Vec::new();
         recs.try_reserve_exact(n).map_err(oom)?;
-        recs.extend(
-            tris.iter()
-                .zip(&in_faces)
-                .enumerate()
-                .map(|(k, ((t, _), f))| Record {
-                    moments: TriMoments::of(t),
-                    face: *f,
-                    added: k as u32,
-                }),
-        );
+        recs.extend(in_faces.iter().enumerate().map(|(k, f)| Record {
+            face: *f,
+            added: k as u32,
+        }));
         drop(in_faces);
         let mut given_ids: Vec<i32> = Vec::new();
         given_ids.try_reserve_exact(n).map_err(oom)?;
@@ -146,10 +156,18 @@ impl Bvh {
         nodes.try_reserve_exact(n - 1).map_err(oom)?;
         nodes.resize(n - 1, placeholder());
         if n > 1 {
-            // The root's vertices: all of them.
+            // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = Vec::new();
             all.try_reserve_exact(in_verts.len()).map_err(oom)?;
             all.extend(0..in_verts.len() as u32);
+            let mut counts: Vec<u32> = Vec::new();
+            counts.try_reserve_exact(in_verts.len()).map_err(oom)?;
+            counts.resize(in_verts.len(), 0);
+            for r in &recs {
+                for &v in &r.face {
+                    counts[v as usize] += 1;
+                }
+            }
             let root = Subtree {
                 recs: &mut recs,
                 nodes: &mut nodes,
@@ -157,6 +175,8 @@ impl Bvh {
                 first_leaf: 0,
                 depth: 0,
                 verts: all,
+                counts,
+                frame: Mat3::identity(),
             };
             // No more threads than subtrees worth one.
             let threads = threads.clamp(1, 1 + n / GRAIN);
@@ -222,12 +242,16 @@ fn build_subtree<'a>(
     // node's along a path (each at most three per triangle below it, a geometric series).
     let bottom = scratch.lists.len();
     let m = sub.recs.len();
-    scratch
-        .lists
-        .try_reserve(sub.verts.len() + 6 * m + 64)
-        .map_err(oom)?;
+    let room = sub.verts.len() + 6 * m + 64;
+    scratch.lists.try_reserve(room).map_err(oom)?;
+    scratch.counts.try_reserve(room).map_err(oom)?;
+    for (i, &v) in sub.verts.iter().enumerate() {
+        scratch.pos[v as usize] = i as u32;
+    }
     scratch.lists.extend_from_slice(&sub.verts);
+    scratch.counts.extend_from_slice(&sub.counts);
     drop(sub.verts);
+    drop(sub.counts);
     let r = node(
         input,
         scratch,
@@ -236,16 +260,19 @@ fn build_subtree<'a>(
         sub.base,
         sub.first_leaf,
         sub.depth,
+        &sub.frame,
         bottom,
         pool,
     );
     scratch.lists.truncate(bottom);
+    scratch.counts.truncate(bottom);
     r
 }
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
-/// `scratch.lists[list..]`, into `nodes[0]` (its index `base`), and the subtrees below it into
-/// the rest of `nodes`.
+/// `scratch.lists[list..]` (their multiplicities `scratch.counts[list..]`, their positions in the
+/// list `scratch.pos`), into `nodes[0]` (its index `base`), and the subtrees below it into the
+/// rest of `nodes`.
 #[allow(clippy::too_many_arguments)]
 fn node<'a>(
     input: &Input,
@@ -255,20 +282,26 @@ fn node<'a>(
     base: usize,
     first_leaf: usize,
     depth: usize,
+    guess: &Mat3,
     list: usize,
     pool: Option<&Pool<Subtree<'a>>>,
 ) -> Result<(), Error> {
     let m = recs.len();
     debug_assert!(m >= 2 && nodes.len() == m - 1);
-    let a = axes_of(&covariance(m, |i| recs[i].moments));
-    // The frame exactly as the node will give it back.
-    let axes = frame_from(&a.column(0).into(), &a.column(1).into());
     scratch.points.clear();
     scratch.points.extend(
         scratch.lists[list..]
             .iter()
             .map(|&v| input.verts[v as usize]),
     );
+    // The covariance of the node's corners: of its distinct vertices, each weighted by how many
+    // corners it is.
+    let a = axes_of(
+        &weighted_covariance(&scratch.points, &scratch.counts[list..]),
+        guess,
+    );
+    // The frame exactly as the node will give it back.
+    let axes = frame_from(&a.column(0).into(), &a.column(1).into());
     let (ssv, obb) = fit_volumes(
         input.volume,
         &axes,
@@ -276,11 +309,14 @@ fn node<'a>(
         input.scale,
         &mut scratch.local,
     );
-    let axis: Vec3 = axes.column(0).into();
+    // Each triangle's key: its corners' coordinates along the first axis, summed (three times
+    // its centroid's), from the points in the frame that the fits computed.
     scratch.keys.clear();
-    scratch
-        .keys
-        .extend(recs.iter().map(|r| r.moments.centroid.dot(&axis)));
+    let (pos, local) = (&scratch.pos, &scratch.local);
+    scratch.keys.extend(recs.iter().map(|r| {
+        let x = |k: usize| local[pos[r.face[k] as usize] as usize].x;
+        x(0) + x(1) + x(2)
+    }));
     let mid = split(recs, &mut scratch.keys, depth >= MEAN_SPLIT_MAX_DEPTH);
     let (this, below) = nodes.split_first_mut().expect("a node for every split");
     *this = Node::new(&ssv, &obb);
@@ -297,15 +333,20 @@ fn node<'a>(
             continue;
         }
         this.children[k] = NodeRef::inner(cbase);
-        // The child's distinct vertices, in the order its triangles first give them.
+        // The child's distinct vertices, in the order its triangles first give them, with their
+        // multiplicities and positions.
         let start = scratch.lists.len();
         let tag = cbase as u32;
         for r in crecs.iter() {
             for &v in &r.face {
-                let stamp = &mut scratch.stamps[v as usize];
-                if *stamp != tag {
-                    *stamp = tag;
-                    scratch.lists.push(v);
+                let v = v as usize;
+                if scratch.stamps[v] != tag {
+                    scratch.stamps[v] = tag;
+                    scratch.pos[v] = (scratch.lists.len() - start) as u32;
+                    scratch.lists.push(v as u32);
+                    scratch.counts.push(1);
+                } else {
+                    scratch.counts[start + scratch.pos[v] as usize] += 1;
                 }
             }
         }
@@ -316,6 +357,8 @@ fn node<'a>(
             first_leaf: cleaf,
             depth: depth + 1,
             verts: Vec::new(),
+            counts: Vec::new(),
+            frame: axes,
         };
         match offer_subtree(scratch, start, sub, pool)? {
             None => {}
@@ -328,19 +371,22 @@ fn node<'a>(
                     sub.base,
                     sub.first_leaf,
                     sub.depth,
+                    &sub.frame,
                     start,
                     pool,
                 )?;
             }
         }
         scratch.lists.truncate(start);
+        scratch.counts.truncate(start);
     }
     Ok(())
 }
 
-/// Offers `sub` (its vertices `scratch.lists[start..]`) to the pool: `None` if taken, else the
-/// subtree back, to build here. Only subtrees worth a thread are offered, and only while a thread
-/// is idle (their vertex list is then copied, once per subtree handed over).
+/// Offers `sub` (its vertices `scratch.lists[start..]`, their multiplicities alongside) to the
+/// pool: `None` if taken, else the subtree back, to build here. Only subtrees worth a thread are
+/// offered, and only while a thread is idle (their vertex list is then copied, once per subtree
+/// handed over).
 fn offer_subtree<'a>(
     scratch: &Scratch,
     start: usize,
@@ -353,15 +399,18 @@ fn offer_subtree<'a>(
     if sub.recs.len() < GRAIN || !pool.wants() {
         return Ok(Some(sub));
     }
-    let list = &scratch.lists[start..];
-    let mut verts = Vec::new();
-    verts
-        .try_reserve_exact(list.len())
-        .map_err(|_| Error::ModelOutOfMemory)?;
-    verts.extend_from_slice(list);
-    sub.verts = verts;
+    let copy = |list: &[u32]| -> Result<Vec<u32>, Error> {
+        let mut v = Vec::new();
+        v.try_reserve_exact(list.len())
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        v.extend_from_slice(list);
+        Ok(v)
+    };
+    sub.verts = copy(&scratch.lists[start..])?;
+    sub.counts = copy(&scratch.counts[start..])?;
     Ok(pool.offer(sub).map(|mut sub| {
         sub.verts = Vec::new();
+        sub.counts = Vec::new();
         sub
     }))
 }
