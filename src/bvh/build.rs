@@ -2,11 +2,16 @@
 //! triangles' corners, split across the axis of largest spread at the mean of the triangle
 //! centroids.
 //!
-//! What makes it quick: the covariance is summed from per-triangle moments (one record per
-//! triangle, not three corners; see `principal_axes.rs`); the volumes are fitted around the node's
-//! distinct vertices (in a mesh about a sixth of its corners: a vertex is shared by about six
-//! triangles), which give the same box and, up to the order points are met in, the same swept
-//! sphere volume; the triangles are partitioned in place; and nothing is allocated per node.
+//! What makes it quick: everything a node computes is taken from its distinct vertices (in a mesh
+//! about a sixth of its corners: a vertex is shared by about six triangles), found with a
+//! per-thread stamp array as the parent splits: the covariance of the corners is the covariance of
+//! the distinct vertices weighted by how many of the node's corners each is; the volumes fitted
+//! around them are the same box and, up to the order points are met in, the same swept sphere
+//! volume; and a triangle's split key is the sum of its three vertices' coordinates along the axis,
+//! read from the points already taken into the node's frame. So the triangles themselves are only
+//! 16-byte records (vertex indices and position as added), partitioned in place: at every level
+//! the build moves a fifth of the bytes a record of moments would take. Nothing is allocated per
+//! node.
 //!
 //! Nodes are numbered in pre-order (a node, its first child's subtree, its second child's; the
 //! first child is the side of the split with more triangles):
@@ -16,12 +21,15 @@
 //! thread count.
 
 use super::build_threads::{GRAIN, Pool};
-use super::principal_axes::{TriMoments, axes_of, covariance};
+use super::principal_axes::{axes_of, weighted_covariance};
+use super::saved::with_room;
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
+use std::sync::atomic::AtomicU32;
+use std::sync::atomic::Ordering::Relaxed;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
 /// such as exponentially spaced triangles, where a mean split peels one triangle at a time) the split
@@ -32,11 +40,10 @@ const MEAN_SPLIT_MAX_DEPTH: usize = 40;
 pub(crate) const MAX_DEPTH: usize = MEAN_SPLIT_MAX_DEPTH + 33;
 
 /// What the build keeps of a triangle, permuted in place into leaf order as nodes split: a node's
-/// triangles are always one contiguous run of these.
+/// triangles are always one contiguous run of these. 16 bytes: what the node needs of the
+/// triangle's geometry it reads through its vertices.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Record {
-    /// Its moments (centroid and corner scatter), for the covariance and the split key.
-    moments: TriMoments,
     /// Its vertices, indices into the distinct vertices of the input.
     face: [u32; 3],
     /// Its position among the triangles as added: becomes `Bvh::added`.
@@ -53,7 +60,8 @@ pub(super) struct Input<'a> {
 
 /// A subtree to build: its triangles' records, the slots of its inner nodes (`recs.len() - 1`,
 /// the first its root's), the index of the first of those slots and of its first triangle in leaf
-/// order, its depth, and its root's distinct vertices (indices into `Input::verts`).
+/// order, its depth, its root's distinct vertices (indices into `Input::verts`) with how many of
+/// its triangles' corners each is, and its parent's frame (where the root's eigensolver starts).
 pub(super) struct Subtree<'a> {
     pub recs: &'a mut [Record],
     pub nodes: &'a mut [Node],
@@ -61,32 +69,40 @@ pub(super) struct Subtree<'a> {
     pub first_leaf: usize,
     pub depth: usize,
     pub verts: Vec<u32>,
+    pub counts: Vec<u32>,
+    pub frame: Mat3,
 }
 
 /// One builder's scratch, reused from node to node: the vertex stamps that find a node's distinct
-/// vertices (the index of the node that last listed each vertex), the node's points, the same in
-/// its frame, its triangles' split keys, and a stack of vertex lists (each node's, along the path
-/// from the subtree's root).
+/// vertices (the index of the node that last listed each vertex), each vertex's position in the
+/// list that last listed it (valid for the node being built: its list was made just before), the
+/// node's points, the same in its frame, its triangles' split keys, and a stack of vertex lists
+/// (each node's, along the path from the subtree's root) with, alongside, how many of the node's
+/// corners each vertex is.
 pub(super) struct Scratch {
     stamps: Vec<u32>,
+    pos: Vec<u32>,
     points: Vec<Vec3>,
     local: Vec<Vec3>,
     keys: Vec<f64>,
     lists: Vec<u32>,
+    counts: Vec<u32>,
 }
 
 impl Scratch {
     pub fn new(num_verts: usize) -> Result<Scratch, Error> {
-        let oom = |_| Error::ModelOutOfMemory;
-        let mut stamps = Vec::new();
-        stamps.try_reserve_exact(num_verts).map_err(oom)?;
+        let mut stamps = with_room(num_verts)?;
         stamps.resize(num_verts, u32::MAX);
+        let mut pos = with_room(num_verts)?;
+        pos.resize(num_verts, 0);
         Ok(Scratch {
             stamps,
+            pos,
             points: Vec::new(),
             local: Vec::new(),
             keys: Vec::new(),
             lists: Vec::new(),
+            counts: Vec::new(),
         })
     }
 }
@@ -111,27 +127,20 @@ impl Bvh {
         collision: CollisionVolume,
         threads: usize,
     ) -> Result<Bvh, Error> {
-        let oom = |_| Error::ModelOutOfMemory;
         let n = tris.len();
         debug_assert!(n > 0);
         // The distinct vertices in the order they first appear in the input, each triangle's
         // by index.
-        let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3])?;
-        let mut recs: Vec<Record> = Vec::new();
-        recs.try_reserve_exact(n).map_err(oom)?;
-        recs.extend(
-            tris.iter()
-                .zip(&in_faces)
-                .enumerate()
-                .map(|(k, ((t, _), f))| Record {
-                    moments: TriMoments::of(t),
-                    face: *f,
-                    added: k as u32,
-                }),
-        );
+        // No more threads than subtrees worth one.
+        let threads = threads.clamp(1, 1 + n / GRAIN);
+        let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3], threads)?;
+        let mut recs: Vec<Record> = with_room(n)?;
+        recs.extend(in_faces.iter().enumerate().map(|(k, f)| Record {
+            face: *f,
+            added: k as u32,
+        }));
         drop(in_faces);
-        let mut given_ids: Vec<i32> = Vec::new();
-        given_ids.try_reserve_exact(n).map_err(oom)?;
+        let mut given_ids: Vec<i32> = with_room(n)?;
         given_ids.extend(tris.iter().map(|(_, id)| *id));
         drop(tris);
         // At least every vertex's `|p|_1` (twice the largest, which is rounded): for the rounding
@@ -142,14 +151,19 @@ impl Bvh {
             volume,
             scale,
         };
-        let mut nodes: Vec<Node> = Vec::new();
-        nodes.try_reserve_exact(n - 1).map_err(oom)?;
+        let mut nodes: Vec<Node> = with_room(n - 1)?;
         nodes.resize(n - 1, placeholder());
         if n > 1 {
-            // The root's vertices: all of them.
-            let mut all: Vec<u32> = Vec::new();
-            all.try_reserve_exact(in_verts.len()).map_err(oom)?;
+            // The root's vertices: all of them, each as many times as the triangles' corners.
+            let mut all: Vec<u32> = with_room(in_verts.len())?;
             all.extend(0..in_verts.len() as u32);
+            let mut counts: Vec<u32> = with_room(in_verts.len())?;
+            counts.resize(in_verts.len(), 0);
+            for r in &recs {
+                for &v in &r.face {
+                    counts[v as usize] += 1;
+                }
+            }
             let root = Subtree {
                 recs: &mut recs,
                 nodes: &mut nodes,
@@ -157,9 +171,9 @@ impl Bvh {
                 first_leaf: 0,
                 depth: 0,
                 verts: all,
+                counts,
+                frame: Mat3::identity(),
             };
-            // No more threads than subtrees worth one.
-            let threads = threads.clamp(1, 1 + n / GRAIN);
             if threads == 1 {
                 let mut scratch = Scratch::new(in_verts.len())?;
                 build_subtree(&input, &mut scratch, root, None)?;
@@ -176,20 +190,15 @@ impl Bvh {
         // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
         // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
         // gives, as the hierarchy's triangles of a subtree are then near each other).
-        let mut ids: Vec<i32> = Vec::new();
-        ids.try_reserve_exact(n).map_err(oom)?;
+        let mut ids: Vec<i32> = with_room(n)?;
         ids.extend(recs.iter().map(|r| given_ids[r.added as usize]));
         drop(given_ids);
-        let mut added: Vec<u32> = Vec::new();
-        added.try_reserve_exact(n).map_err(oom)?;
+        let mut added: Vec<u32> = with_room(n)?;
         added.extend(recs.iter().map(|r| r.added));
-        let mut remap: Vec<u32> = Vec::new();
-        remap.try_reserve_exact(in_verts.len()).map_err(oom)?;
+        let mut remap: Vec<u32> = with_room(in_verts.len())?;
         remap.resize(in_verts.len(), u32::MAX);
-        let mut verts: Vec<Vec3> = Vec::new();
-        verts.try_reserve_exact(in_verts.len()).map_err(oom)?;
-        let mut faces: Vec<[u32; 3]> = Vec::new();
-        faces.try_reserve_exact(n).map_err(oom)?;
+        let mut verts: Vec<Vec3> = with_room(in_verts.len())?;
+        let mut faces: Vec<[u32; 3]> = with_room(n)?;
         for r in &recs {
             faces.push(r.face.map(|v| {
                 let slot = &mut remap[v as usize];
@@ -223,12 +232,16 @@ fn build_subtree<'a>(
     // node's along a path (each at most three per triangle below it, a geometric series).
     let bottom = scratch.lists.len();
     let m = sub.recs.len();
-    scratch
-        .lists
-        .try_reserve(sub.verts.len() + 6 * m + 64)
-        .map_err(oom)?;
+    let room = sub.verts.len() + 6 * m + 64;
+    scratch.lists.try_reserve(room).map_err(oom)?;
+    scratch.counts.try_reserve(room).map_err(oom)?;
+    for (i, &v) in sub.verts.iter().enumerate() {
+        scratch.pos[v as usize] = i as u32;
+    }
     scratch.lists.extend_from_slice(&sub.verts);
+    scratch.counts.extend_from_slice(&sub.counts);
     drop(sub.verts);
+    drop(sub.counts);
     let r = node(
         input,
         scratch,
@@ -237,16 +250,19 @@ fn build_subtree<'a>(
         sub.base,
         sub.first_leaf,
         sub.depth,
+        &sub.frame,
         bottom,
         pool,
     );
     scratch.lists.truncate(bottom);
+    scratch.counts.truncate(bottom);
     r
 }
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
-/// `scratch.lists[list..]`, into `nodes[0]` (its index `base`), and the subtrees below it into
-/// the rest of `nodes`.
+/// `scratch.lists[list..]` (their multiplicities `scratch.counts[list..]`, their positions in the
+/// list `scratch.pos`), into `nodes[0]` (its index `base`), and the subtrees below it into the
+/// rest of `nodes`. `guess` is the parent's frame, where the eigensolver starts.
 #[allow(clippy::too_many_arguments)]
 fn node<'a>(
     input: &Input,
@@ -256,20 +272,26 @@ fn node<'a>(
     base: usize,
     first_leaf: usize,
     depth: usize,
+    guess: &Mat3,
     list: usize,
     pool: Option<&Pool<Subtree<'a>>>,
 ) -> Result<(), Error> {
     let m = recs.len();
     debug_assert!(m >= 2 && nodes.len() == m - 1);
-    let a = axes_of(&covariance(m, |i| recs[i].moments));
-    // The frame exactly as the node will give it back.
-    let axes = frame_from(&a.column(0).into(), &a.column(1).into());
     scratch.points.clear();
     scratch.points.extend(
         scratch.lists[list..]
             .iter()
             .map(|&v| input.verts[v as usize]),
     );
+    // The covariance of the node's corners: of its distinct vertices, each weighted by how many
+    // corners it is.
+    let a = axes_of(
+        &weighted_covariance(&scratch.points, &scratch.counts[list..]),
+        guess,
+    );
+    // The frame exactly as the node will give it back.
+    let axes = frame_from(&a.column(0).into(), &a.column(1).into());
     let (ssv, obb) = fit_volumes(
         input.volume,
         &axes,
@@ -277,11 +299,14 @@ fn node<'a>(
         input.scale,
         &mut scratch.local,
     );
-    let axis: Vec3 = axes.column(0).into();
+    // Each triangle's key: its corners' coordinates along the first axis, summed (three times
+    // its centroid's), from the points in the frame that the fits computed.
     scratch.keys.clear();
-    scratch
-        .keys
-        .extend(recs.iter().map(|r| r.moments.centroid.dot(&axis)));
+    let (pos, local) = (&scratch.pos, &scratch.local);
+    scratch.keys.extend(recs.iter().map(|r| {
+        let x = |k: usize| local[pos[r.face[k] as usize] as usize].x;
+        x(0) + x(1) + x(2)
+    }));
     let mid = split(recs, &mut scratch.keys, depth >= MEAN_SPLIT_MAX_DEPTH);
     let (this, below) = nodes.split_first_mut().expect("a node for every split");
     *this = Node::new(&ssv, &obb);
@@ -298,15 +323,20 @@ fn node<'a>(
             continue;
         }
         this.children[k] = NodeRef::inner(cbase);
-        // The child's distinct vertices, in the order its triangles first give them.
+        // The child's distinct vertices, in the order its triangles first give them, with their
+        // multiplicities and positions.
         let start = scratch.lists.len();
         let tag = cbase as u32;
         for r in crecs.iter() {
             for &v in &r.face {
-                let stamp = &mut scratch.stamps[v as usize];
-                if *stamp != tag {
-                    *stamp = tag;
-                    scratch.lists.push(v);
+                let v = v as usize;
+                if scratch.stamps[v] != tag {
+                    scratch.stamps[v] = tag;
+                    scratch.pos[v] = (scratch.lists.len() - start) as u32;
+                    scratch.lists.push(v as u32);
+                    scratch.counts.push(1);
+                } else {
+                    scratch.counts[start + scratch.pos[v] as usize] += 1;
                 }
             }
         }
@@ -317,6 +347,8 @@ fn node<'a>(
             first_leaf: cleaf,
             depth: depth + 1,
             verts: Vec::new(),
+            counts: Vec::new(),
+            frame: axes,
         };
         match offer_subtree(scratch, start, sub, pool)? {
             None => {}
@@ -329,19 +361,22 @@ fn node<'a>(
                     sub.base,
                     sub.first_leaf,
                     sub.depth,
+                    &sub.frame,
                     start,
                     pool,
                 )?;
             }
         }
         scratch.lists.truncate(start);
+        scratch.counts.truncate(start);
     }
     Ok(())
 }
 
-/// Offers `sub` (its vertices `scratch.lists[start..]`) to the pool: `None` if taken, else the
-/// subtree back, to build here. Only subtrees worth a thread are offered, and only while a thread
-/// is idle (their vertex list is then copied, once per subtree handed over).
+/// Offers `sub` (its vertices `scratch.lists[start..]`, their multiplicities alongside) to the
+/// pool: `None` if taken, else the subtree back, to build here. Only subtrees worth a thread are
+/// offered, and only while a thread is idle (their vertex list is then copied, once per subtree
+/// handed over).
 fn offer_subtree<'a>(
     scratch: &Scratch,
     start: usize,
@@ -354,15 +389,18 @@ fn offer_subtree<'a>(
     if sub.recs.len() < GRAIN || !pool.wants() {
         return Ok(Some(sub));
     }
-    let list = &scratch.lists[start..];
-    let mut verts = Vec::new();
-    verts
-        .try_reserve_exact(list.len())
-        .map_err(|_| Error::ModelOutOfMemory)?;
-    verts.extend_from_slice(list);
-    sub.verts = verts;
+    let copy = |list: &[u32]| -> Result<Vec<u32>, Error> {
+        let mut v = Vec::new();
+        v.try_reserve_exact(list.len())
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        v.extend_from_slice(list);
+        Ok(v)
+    };
+    sub.verts = copy(&scratch.lists[start..])?;
+    sub.counts = copy(&scratch.counts[start..])?;
     Ok(pool.offer(sub).map(|mut sub| {
         sub.verts = Vec::new();
+        sub.counts = Vec::new();
         sub
     }))
 }
@@ -372,72 +410,76 @@ fn offer_subtree<'a>(
 /// corners, kept at most half full: expected O(n).
 pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
     let corners = tris.as_flattened();
-    share_corners(tris.len(), |c| &corners[c])
+    share_corners(tris.len(), |c| &corners[c], 1)
 }
 
 /// [`share_vertices`] of the `count` triangles whose corner `c` (`3 t + k`: corner `k` of
-/// triangle `t`) is `corner(c)`.
+/// triangle `t`) is `corner(c)`, on up to `threads` threads. The corners are split among the
+/// threads by hash (each finds, for the corners whose hash is its share, the first corner with the
+/// same bits); the vertices are then numbered in one pass in the order they first appear, so the
+/// result is the same whatever the thread count.
 fn share_corners<'a>(
     count: usize,
-    corner: impl Fn(usize) -> &'a Vec3,
+    corner: impl Fn(usize) -> &'a Vec3 + Sync,
+    threads: usize,
 ) -> Result<(Vec<Vec3>, Vec<[u32; 3]>), Error> {
-    let oom = |_| Error::ModelOutOfMemory;
     let bits = |c: usize| {
         let v = corner(c);
         [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
     };
-    let tris_len = count;
-    let mut faces: Vec<[u32; 3]> = Vec::new();
-    faces.try_reserve_exact(tris_len).map_err(oom)?;
-    faces.resize(tris_len, [0; 3]);
+    let mut faces: Vec<[u32; 3]> = with_room(count)?;
+    faces.resize(count, [0; 3]);
     let face_ids = faces.as_flattened_mut();
-    // Slots hold a corner index plus one (0: empty); that corner's vertex is the entry's. Sized
-    // for a mesh's usual one vertex per two triangles, doubled whenever it gets half full.
-    let mut shift = 64 - (tris_len.max(8)).next_power_of_two().trailing_zeros();
-    let mut table: Vec<u32> = Vec::new();
-    let grow = |table: &mut Vec<u32>, shift: u32| -> Result<(), Error> {
-        let size = 1usize << (64 - shift);
-        let mut new: Vec<u32> = Vec::new();
-        new.try_reserve_exact(size).map_err(oom)?;
-        new.resize(size, 0);
-        for &e in table.iter().filter(|&&e| e != 0) {
-            let mut i = slot(&bits(e as usize - 1), shift);
-            while new[i] != 0 {
-                i = (i + 1) & (size - 1);
-            }
-            new[i] = e;
-        }
-        *table = new;
-        Ok(())
-    };
-    grow(&mut table, shift)?;
-    let mut distinct = 0usize;
-    for c in 0..3 * tris_len {
-        let key = bits(c);
-        let mask = table.len() - 1;
-        let mut i = slot(&key, shift);
-        loop {
-            let e = table[i] as usize;
-            if e == 0 {
-                table[i] = c as u32 + 1;
-                face_ids[c] = distinct as u32;
+    let mut distinct = 0u32;
+    if threads <= 1 {
+        first_corners(face_ids.len(), &bits, 1, 0, |c, first| {
+            face_ids[c] = if first == c {
                 distinct += 1;
-                if 2 * distinct > table.len() {
-                    shift -= 1;
-                    grow(&mut table, shift)?;
-                }
-                break;
+                distinct - 1
+            } else {
+                face_ids[first]
+            };
+        })?;
+    } else {
+        // Each corner's first corner with the same bits, found by the thread of its hash's share.
+        let mut firsts: Vec<AtomicU32> = with_room(face_ids.len())?;
+        firsts.resize_with(face_ids.len(), || AtomicU32::new(0));
+        let corners = face_ids.len();
+        let part = |p: usize| {
+            first_corners(corners, &bits, threads, p, |c, first| {
+                firsts[c].store(first as u32, Relaxed);
+            })
+        };
+        let results: Vec<Result<(), Error>> = std::thread::scope(|s| {
+            let handles: Vec<_> = (1..threads)
+                .map(|p| {
+                    std::thread::Builder::new()
+                        .spawn_scoped(s, move || part(p))
+                        .map_err(|_| p)
+                })
+                .collect();
+            let mut results = vec![part(0)];
+            for h in handles {
+                // A thread that could not be started: its share is done here.
+                results.push(match h {
+                    Ok(h) => h.join().unwrap_or(Err(Error::Internal)),
+                    Err(p) => part(p),
+                });
             }
-            if bits(e - 1) == key {
-                face_ids[c] = face_ids[e - 1];
-                break;
-            }
-            i = (i + 1) & mask;
+            results
+        });
+        results.into_iter().collect::<Result<(), Error>>()?;
+        for c in 0..corners {
+            let first = firsts[c].load(Relaxed) as usize;
+            face_ids[c] = if first == c {
+                distinct += 1;
+                distinct - 1
+            } else {
+                face_ids[first]
+            };
         }
     }
-    drop(table);
-    let mut verts: Vec<Vec3> = Vec::new();
-    verts.try_reserve_exact(distinct).map_err(oom)?;
+    let mut verts: Vec<Vec3> = with_room(distinct as usize)?;
     for (c, &v) in face_ids.iter().enumerate() {
         // A vertex's first corner is the one that gave it the next index.
         if v as usize == verts.len() {
@@ -447,16 +489,81 @@ fn share_corners<'a>(
     Ok((verts, faces))
 }
 
-/// The table slot of a vertex's bit pattern, for a table of `2^(64 - shift)` slots: a
-/// multiplicative hash, which takes its slot from the product's high bits.
+/// For each of the `corners` whose hash falls in share `part` of `parts`, in increasing order,
+/// `found(c, first)`: `first` the least corner with the same bits (`bits(c)`). Finds repeats with
+/// a hash table of corners, kept at most half full: expected O(corners).
+fn first_corners(
+    corners: usize,
+    bits: &impl Fn(usize) -> [u64; 3],
+    parts: usize,
+    part: usize,
+    mut found: impl FnMut(usize, usize),
+) -> Result<(), Error> {
+    // Slots hold a corner index plus one (0: empty). Sized for a mesh's usual one vertex per two
+    // triangles, doubled whenever it gets half full.
+    let mut shift = 64
+        - (corners / 3 / parts)
+            .max(8)
+            .next_power_of_two()
+            .trailing_zeros();
+    let mut table: Vec<u32> = Vec::new();
+    let grow = |table: &mut Vec<u32>, shift: u32| -> Result<(), Error> {
+        let size = 1usize << (64 - shift);
+        let mut new: Vec<u32> = with_room(size)?;
+        new.resize(size, 0);
+        for &e in table.iter().filter(|&&e| e != 0) {
+            let mut i = (hash(&bits(e as usize - 1)) >> shift) as usize;
+            while new[i] != 0 {
+                i = (i + 1) & (size - 1);
+            }
+            new[i] = e;
+        }
+        *table = new;
+        Ok(())
+    };
+    grow(&mut table, shift)?;
+    let mut entries = 0usize;
+    for c in 0..corners {
+        let key = bits(c);
+        let h = hash(&key);
+        // The share: from bits of the hash that the slot (its top bits) does not use.
+        if parts > 1 && ((((h >> 16) & 0xffff) as usize * parts) >> 16) != part {
+            continue;
+        }
+        let mask = table.len() - 1;
+        let mut i = (h >> shift) as usize;
+        loop {
+            let e = table[i] as usize;
+            if e == 0 {
+                table[i] = c as u32 + 1;
+                found(c, c);
+                entries += 1;
+                if 2 * entries > table.len() {
+                    shift -= 1;
+                    grow(&mut table, shift)?;
+                }
+                break;
+            }
+            if bits(e - 1) == key {
+                found(c, e - 1);
+                break;
+            }
+            i = (i + 1) & mask;
+        }
+    }
+    Ok(())
+}
+
+/// A multiplicative hash of a vertex's bit pattern: a table of `2^(64 - shift)` slots takes its
+/// slot from the top bits, `hash >> shift`.
 #[inline]
-fn slot(key: &[u64; 3], shift: u32) -> usize {
+fn hash(key: &[u64; 3]) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
     let h = (key[0].wrapping_mul(K) ^ key[1])
         .wrapping_mul(K)
         .rotate_left(29)
         ^ key[2];
-    (h.wrapping_mul(K) >> shift) as usize
+    h.wrapping_mul(K)
 }
 
 fn placeholder() -> Node {

@@ -1,32 +1,8 @@
 //! A node's frame: the principal axes of its triangles' corners (the eigenvectors of their
-//! covariance, largest spread first), from per-triangle moments summed over the node, and the
-//! symmetric 3x3 eigensolver it takes.
+//! covariance, largest spread first), from the node's distinct vertices weighted by their
+//! multiplicities, and the symmetric 3x3 eigensolver it takes.
 
 use crate::math::{Mat3, Vec3};
-
-/// A triangle's moments, from which a node sums its corners' covariance without visiting its
-/// corners: the centroid `c`, and `sum over corners p of (p - c)(p - c)^T` (entries xx, xy, xz,
-/// yy, yz, zz). Taken about the triangle's own centroid, they carry no cancellation whatever the
-/// distance from the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct TriMoments {
-    pub centroid: Vec3,
-    pub spread: [f64; 6],
-}
-
-impl TriMoments {
-    pub fn of(t: &[Vec3; 3]) -> TriMoments {
-        let c = (t[0] + t[1] + t[2]) / 3.0;
-        let mut s = [0.0f64; 6];
-        for p in t {
-            add_outer(&mut s, &(p - c), 1.0);
-        }
-        TriMoments {
-            centroid: c,
-            spread: s,
-        }
-    }
-}
 
 /// Adds `w d d^T` to the six distinct entries `s`.
 #[inline(always)]
@@ -39,26 +15,25 @@ fn add_outer(s: &mut [f64; 6], d: &Vec3, w: f64) {
     s[5] += w * d.z * d.z;
 }
 
-/// The covariance of the corners of the triangles whose moments `moments(i)` are given (`count`,
-/// not 0), about their mean. By the parallel axis theorem the corners' scatter about the mean
-/// `m` is each triangle's own scatter plus three times its centroid's offset from `m`, squared:
-/// two passes over the triangles rather than over three times as many corners.
-pub(super) fn covariance(count: usize, moments: impl Fn(usize) -> TriMoments) -> Mat3 {
-    let n = count as f64;
-    let mut mean = Vec3::zeros();
-    for i in 0..count {
-        mean += moments(i).centroid;
+/// The covariance about their mean of the points `points` (not empty), point `i` counted
+/// `weights[i]` times (not all 0): a node's corners from its distinct vertices and their
+/// multiplicities. Two passes: the mean, then the scatter about it (no cancellation however far
+/// the points are from the origin).
+pub(super) fn weighted_covariance(points: &[Vec3], weights: &[u32]) -> Mat3 {
+    debug_assert_eq!(points.len(), weights.len());
+    let mut total = 0.0f64;
+    let mut sum = Vec3::zeros();
+    for (p, &w) in points.iter().zip(weights) {
+        let w = f64::from(w);
+        sum += p * w;
+        total += w;
     }
-    mean /= n;
+    let mean = sum / total;
     let mut s = [0.0f64; 6];
-    for i in 0..count {
-        let t = moments(i);
-        for (a, b) in s.iter_mut().zip(&t.spread) {
-            *a += b;
-        }
-        add_outer(&mut s, &(t.centroid - mean), 3.0);
+    for (p, &w) in points.iter().zip(weights) {
+        add_outer(&mut s, &(p - mean), f64::from(w));
     }
-    let s = s.map(|v| v / (3.0 * n));
+    let s = s.map(|v| v / total);
     Mat3::new(s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5])
 }
 
@@ -87,7 +62,7 @@ pub(super) fn symmetric_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
         let off = a[(0, 1)] * a[(0, 1)] + a[(0, 2)] * a[(0, 2)] + a[(1, 2)] * a[(1, 2)];
         let diag = a[(0, 0)] * a[(0, 0)] + a[(1, 1)] * a[(1, 1)] + a[(2, 2)] * a[(2, 2)];
         // Off-diagonal entries below rounding of the diagonal: converged.
-        if off <= 1e-36 * diag || off == 0.0 {
+        if off <= 1e-28 * diag || off == 0.0 {
             break;
         }
         for (p, q, r) in PAIRS {
@@ -128,12 +103,29 @@ pub(super) fn symmetric_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
 
 /// Principal axes from a covariance: its eigenvectors as orthonormal right-handed columns in
 /// decreasing order of eigenvalue. Identity when the covariance gives no usable frame (not
-/// finite: coordinates whose squares overflow).
-pub(super) fn axes_of(cov: &Mat3) -> Mat3 {
+/// finite: coordinates whose squares overflow). `guess` (orthonormal columns) is where the Jacobi
+/// rotations start: the covariance is taken into that frame first, so a frame close to the answer
+/// (the parent node's: a child's shape is usually much like its parent's) leaves little to rotate
+/// and the solver converges in fewer sweeps.
+pub(super) fn axes_of(cov: &Mat3, guess: &Mat3) -> Mat3 {
     if !cov.iter().all(|v| v.is_finite()) {
         return Mat3::identity();
     }
-    let (values, vectors) = symmetric_eigen(cov);
+    let b = guess.tr_mul(&(cov * guess));
+    // Symmetric to the bit, from the upper triangle.
+    let b = Mat3::new(
+        b[(0, 0)],
+        b[(0, 1)],
+        b[(0, 2)],
+        b[(0, 1)],
+        b[(1, 1)],
+        b[(1, 2)],
+        b[(0, 2)],
+        b[(1, 2)],
+        b[(2, 2)],
+    );
+    let (values, rotation) = symmetric_eigen(&b);
+    let vectors = guess * rotation;
     let mut idx = [0usize, 1, 2];
     idx.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
     let v0: Vec3 = vectors.column(idx[0]).into();
@@ -152,7 +144,7 @@ pub(super) fn axes_of(cov: &Mat3) -> Mat3 {
 /// Principal axes of a point set (not empty): [`axes_of`] its covariance.
 #[cfg(test)]
 pub(super) fn principal_axes(points: &[Vec3]) -> Mat3 {
-    axes_of(&point_covariance(points))
+    axes_of(&point_covariance(points), &Mat3::identity())
 }
 
 #[cfg(test)]
@@ -203,20 +195,29 @@ mod tests {
     }
 
     #[test]
-    fn moments_give_the_corners_covariance() {
+    fn weighted_vertices_give_the_corners_covariance() {
+        // Triangles over a few shared vertices: the distinct vertices weighted by how many
+        // corners each is give the corners' covariance.
         let mut s = Lcg(8);
         for case in 0..200 {
             let offset = [0.0, 1e3, -1e6][case % 3];
-            let n = 1 + case % 17;
-            let tris: Vec<[Vec3; 3]> = (0..n)
-                .map(|_| {
-                    [(); 3]
-                        .map(|_| Vec3::new(s.unit(), 0.2 * s.unit(), s.unit()).add_scalar(offset))
-                })
+            let pool: Vec<Vec3> = (0..2 + case % 9)
+                .map(|_| Vec3::new(s.unit(), 0.2 * s.unit(), s.unit()).add_scalar(offset))
                 .collect();
-            let moments: Vec<TriMoments> = tris.iter().map(TriMoments::of).collect();
-            let got = covariance(n, |i| moments[i]);
-            let want = point_covariance(tris.as_flattened());
+            let n = 1 + case % 17;
+            let pick = |s: &mut Lcg| (s.unit() * pool.len() as f64) as usize % pool.len();
+            let faces: Vec<[usize; 3]> = (0..n)
+                .map(|_| [pick(&mut s), pick(&mut s), pick(&mut s)])
+                .collect();
+            let mut weights = vec![0u32; pool.len()];
+            for f in &faces {
+                for &v in f {
+                    weights[v] += 1;
+                }
+            }
+            let corners: Vec<Vec3> = faces.iter().flatten().map(|&v| pool[v]).collect();
+            let got = weighted_covariance(&pool, &weights);
+            let want = point_covariance(&corners);
             assert!((got - want).norm() <= 1e-9 * (1.0 + want.norm()), "{case}");
         }
     }

@@ -206,8 +206,9 @@ fn put_u32s(out: &mut [u8], values: &[u32]) {
 }
 
 /// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`. A large one is offered huge
-/// pages (see [`advise_huge_pages`]).
-fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
+/// pages (see [`advise_huge_pages`]): a load, and the build (`build.rs`), write every byte of
+/// their arrays once, into fresh memory.
+pub(super) fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     let mut v: Vec<T> = Vec::new();
     v.try_reserve_exact(n)
         .map_err(|_| Error::ModelOutOfMemory)?;
