@@ -1832,5 +1832,8 @@ int main(int argc, char** argv) {
     if (o.want("peers")) stage("peers"), workload_peers(o);
 #endif
     report(o);
-    return 0;
+    // As in die(): FCL's and Coal's static objects must not be destroyed (twice) at exit.
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(0);
 }

@@ -22,7 +22,6 @@
 
 use super::build_threads::{GRAIN, Pool};
 use super::principal_axes::{axes_of, weighted_covariance};
-use super::saved::with_room;
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
@@ -257,6 +256,16 @@ fn build_subtree<'a>(
     scratch.lists.truncate(bottom);
     scratch.counts.truncate(bottom);
     r
+}
+
+/// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`. Unlike a load's arrays
+/// (`saved.rs`), the build's are not offered huge pages: with the kernel's default `defrag`
+/// setting a huge-page fault may compact memory synchronously, and in measurements the
+/// single-thread 1M build became 1.2-1.3x slower and erratic with them (BENCHMARKS.md section 25).
+fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+    Ok(v)
 }
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
