@@ -493,7 +493,8 @@ fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<
 /// inner nodes):
 /// depth-first from the root, first child first, the leaves come in slot order `0, 1, ..., n - 1`,
 /// every inner child is in range, no more than `n - 1` inner nodes are visited, and no leaf is
-/// deeper than [`MAX_DEPTH`] (counting the root as 1). Since every inner node has two children,
+/// deeper than [`MAX_DEPTH`] (counting the root as 1), and every inner child comes after its
+/// parent in the array (refit relies on it). Since every inner node has two children,
 /// `n` leaves each met once make it a tree with each node reached exactly once (a node reached
 /// twice would show its leaves twice). O(n), and ends early on the first fault, so a crafted
 /// graph (cycles, shared nodes) costs no more.
@@ -527,6 +528,12 @@ fn check_tree(children: &[[NodeRef; 2]], n: usize) -> Result<(), Error> {
                     return Err(Error::InvalidData);
                 }
                 let [c0, c1] = children[i];
+                // Children after their parent, as a build numbers them (pre-order): refit
+                // recomputes the volumes in one backward pass over the nodes.
+                let before = |c: NodeRef| matches!(c.kind(), NodeKind::Inner(j) if j <= i);
+                if before(c0) || before(c1) {
+                    return Err(Error::InvalidData);
+                }
                 stack[len] = (c1, depth + 1);
                 stack[len + 1] = (c0, depth + 1);
                 len += 2;
@@ -733,6 +740,31 @@ mod tests {
         let mut swapped = kids.clone();
         swapped[0].swap(0, 1);
         assert_eq!(check_tree(&swapped, 40), Err(Error::InvalidData));
+        // The same tree with the root's first inner child stored last and the last node stored
+        // there (references renamed): a valid tree whose child precedes its parent when the
+        // moved node is an inner node's child with a larger index than that node.
+        let first = (0..kids.len())
+            .find(|&k| kids[0].iter().any(|c| c.0 == NodeRef::inner(k).0))
+            .expect("the root has an inner child");
+        let last = kids.len() - 1;
+        let rename = |r: NodeRef| {
+            if r.0 == NodeRef::inner(first).0 {
+                NodeRef::inner(last)
+            } else if r.0 == NodeRef::inner(last).0 {
+                NodeRef::inner(first)
+            } else {
+                r
+            }
+        };
+        let mut moved: Vec<[NodeRef; 2]> = kids.iter().map(|k| k.map(rename)).collect();
+        moved.swap(first, last);
+        let parent_after_child = (0..moved.len()).any(|i| {
+            moved[i]
+                .iter()
+                .any(|c| matches!(c.kind(), NodeKind::Inner(j) if j <= i))
+        });
+        assert!(parent_after_child);
+        assert_eq!(check_tree(&moved, 40), Err(Error::InvalidData));
     }
 
     #[test]
