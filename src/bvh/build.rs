@@ -264,7 +264,8 @@ fn build_subtree<'a>(
 /// single-thread 1M build became 1.2-1.3x slower and erratic with them (BENCHMARKS.md section 25).
 fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| Error::ModelOutOfMemory)?;
+    v.try_reserve_exact(n)
+        .map_err(|_| Error::ModelOutOfMemory)?;
     Ok(v)
 }
 
