@@ -45,9 +45,16 @@ pub(crate) fn segment_segment_params(p0: &Vec3, p1: &Vec3, q0: &Vec3, q1: &Vec3)
     if len == 0.0 {
         return (0.0, 0.0);
     }
-    let k = (-len.log2().floor()).min(500.0 - r.amax().log2().ceil());
-    let scale = 2f64.powi((k as i32).clamp(-1000, 1000));
-    let (d1, d2, r) = (d1 * scale, d2 * scale, r * scale);
+    // Within these bounds nothing over- or underflows (the products stay within 2^±800) and
+    // scaling, exact, would change no bit of the answer: skip it on V-Clip's usual path.
+    let (lo, hi) = (2f64.powi(-200), 2f64.powi(200));
+    let (d1, d2, r) = if len >= lo && len <= hi && r.amax() <= hi {
+        (d1, d2, r)
+    } else {
+        let k = (-len.log2().floor()).min(500.0 - r.amax().log2().ceil());
+        let scale = 2f64.powi((k as i32).clamp(-1000, 1000));
+        (d1 * scale, d2 * scale, r * scale)
+    };
     let a = d1.norm_squared();
     let e = d2.norm_squared();
     if a <= 0.0 && e <= 0.0 {

@@ -59,15 +59,18 @@ pub(crate) fn area_vector(pts: &[P3], cycle: &[u32]) -> [f64; 3] {
     if least * s1 * s2 < 2f64.powi(-480) {
         return area_vector_integers(pts, cycle);
     }
+    let scaled: Vec<P3> = cycle
+        .iter()
+        .map(|&v| pts[v as usize].map(|x| x * s1 * s2))
+        .collect();
     let mut out = [0.0; 3];
     for (c, o) in out.iter_mut().enumerate() {
         let (i, j) = ((c + 1) % 3, (c + 2) % 3);
         let mut x = Expansion::<256>::new();
-        for q in 0..cycle.len() {
-            let a = &pts[cycle[q] as usize];
-            let b = &pts[cycle[(q + 1) % cycle.len()] as usize];
-            x.add_product(1.0, a[i] * s1 * s2, b[j] * s1 * s2);
-            x.add_product(-1.0, a[j] * s1 * s2, b[i] * s1 * s2);
+        for (q, a) in scaled.iter().enumerate() {
+            let b = &scaled[(q + 1) % scaled.len()];
+            x.add_product(1.0, a[i], b[j]);
+            x.add_product(-1.0, a[j], b[i]);
         }
         *o = x.estimate();
     }
