@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "../c_tests/fcl_util.hpp"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -141,15 +143,7 @@ void center(const void *obj, ccd_vec3_t *out) {
     ccdVec3Set(out, o->p->T[0], o->p->T[1], o->p->T[2]);  // the model origins are inside the hulls
 }
 
-fcl::Transform3d tf(const Pose &p) {
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    fcl::Matrix3d R;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) R(r, c) = p.R[3 * r + c];
-    t.linear() = R;
-    t.translation() = fcl::Vector3d(p.T[0], p.T[1], p.T[2]);
-    return t;
-}
+fcl::Transform3d tf(const Pose &p) { return fclu::transform(p.R, p.T); }
 
 struct Run {
     std::string name;

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "../c_tests/fcl_util.hpp"
 #include "workloads.hpp"
 
 using bench::Mesh;
@@ -66,24 +67,9 @@ pqp_model* our_mesh(const Mesh& m) {
     return p;
 }
 
-std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fcl_mesh(const Mesh& m) {
-    auto g = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-    g->beginModel(static_cast<int>(m.size()), static_cast<int>(3 * m.size()));
-    for (const auto& t : m)
-        g->addTriangle(fcl::Vector3d(t[0], t[1], t[2]), fcl::Vector3d(t[3], t[4], t[5]), fcl::Vector3d(t[6], t[7], t[8]));
-    g->endModel();
-    g->computeLocalAABB();
-    return g;
-}
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fcl_mesh(const Mesh& m) { return fclu::mesh_of_flat<fcl::OBBRSSd>(m); }
 
-fcl::Transform3d fcl_tf(const Pose& p) {
-    fcl::Transform3d tf = fcl::Transform3d::Identity();
-    fcl::Matrix3d R;
-    R << p.R[0], p.R[1], p.R[2], p.R[3], p.R[4], p.R[5], p.R[6], p.R[7], p.R[8];
-    tf.linear() = R;
-    tf.translation() = fcl::Vector3d(p.T[0], p.T[1], p.T[2]);
-    return tf;
-}
+fcl::Transform3d fcl_tf(const Pose& p) { return fclu::transform(p.R.data(), p.T.data()); }
 
 /// The primitive as triangles: a UV sphere, stretched along z for the capsule, or the box's faces.
 Mesh meshed(int kind, double a, double b, double c) {

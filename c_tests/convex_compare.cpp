@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "fcl_util.hpp"
 #include "harness/harness.hpp"
 
 using namespace ht;
@@ -305,15 +306,7 @@ ccd_t ccd_setup() {
     return ccd;
 }
 
-fcl::Transform3d fcl_tf(const Pose &p) {
-    fcl::Transform3d tf = fcl::Transform3d::Identity();
-    fcl::Matrix3d R;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) R(r, c) = p.R[3 * r + c];
-    tf.linear() = R;
-    tf.translation() = fcl::Vector3d(p.T[0], p.T[1], p.T[2]);
-    return tf;
-}
+fcl::Transform3d fcl_tf(const Pose &p) { return fclu::transform(p.R, p.T); }
 
 double fcl_distance(const Hull &a, const Pose &pa, const Hull &b, const Pose &pb) {
     fcl::CollisionObjectd oa(a.fcl, fcl_tf(pa)), ob(b.fcl, fcl_tf(pb));

@@ -14,6 +14,7 @@
 #include <memory>
 #include <set>
 
+#include "fcl_util.hpp"
 #include "harness/harness.hpp"
 
 using namespace ht;
@@ -24,24 +25,10 @@ using FclModel = fcl::BVHModel<fcl::OBBRSSd>;
 using PairSet = std::set<std::pair<int, int>>;
 
 std::shared_ptr<FclModel> fcl_model(const Mesh &m) {
-    auto g = std::make_shared<FclModel>();
-    g->beginModel(static_cast<int>(m.tris.size()), static_cast<int>(3 * m.tris.size()));
-    for (const ht::Tri &t : m.tris)  // one addTriangle per triangle: FCL's primitive index = our id
-        g->addTriangle(fcl::Vector3d(t.p[0][0], t.p[0][1], t.p[0][2]), fcl::Vector3d(t.p[1][0], t.p[1][1], t.p[1][2]),
-                       fcl::Vector3d(t.p[2][0], t.p[2][1], t.p[2][2]));
-    g->endModel();
-    g->computeLocalAABB();
-    return g;
+    return fclu::mesh<fcl::OBBRSSd>(m.tris.size(), [&](size_t i, int k) { return m.tris[i].p[k]; });
 }
 
-fcl::Transform3d fcl_tf(const Pose &p) {
-    fcl::Transform3d tf = fcl::Transform3d::Identity();
-    fcl::Matrix3d R;
-    R << p.R[0], p.R[1], p.R[2], p.R[3], p.R[4], p.R[5], p.R[6], p.R[7], p.R[8];
-    tf.linear() = R;
-    tf.translation() = fcl::Vector3d(p.T[0], p.T[1], p.T[2]);
-    return tf;
-}
+fcl::Transform3d fcl_tf(const Pose &p) { return fclu::transform(p.R, p.T); }
 
 struct FclPair {
     std::shared_ptr<FclModel> a, b;

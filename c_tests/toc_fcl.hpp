@@ -43,6 +43,8 @@
 #include <string>
 #include <vector>
 
+#include "fcl_util.hpp"
+
 namespace toc {
 
 using M3 = std::array<double, 9>;  ///< row-major rotation
@@ -157,14 +159,7 @@ inline double speed_bound(const Motion &m1, double r1, const Motion &m2, double 
 /// An FCL mesh: one addTriangle per triangle (9 doubles each), so FCL's primitive index is our id.
 template <typename BV>
 std::shared_ptr<fcl::BVHModel<BV>> fcl_mesh(const std::vector<std::array<double, 9>> &tris) {
-    auto g = std::make_shared<fcl::BVHModel<BV>>();
-    g->beginModel(static_cast<int>(tris.size()), static_cast<int>(3 * tris.size()));
-    for (const auto &t : tris)
-        g->addTriangle(fcl::Vector3d(t[0], t[1], t[2]), fcl::Vector3d(t[3], t[4], t[5]),
-                       fcl::Vector3d(t[6], t[7], t[8]));
-    g->endModel();
-    g->computeLocalAABB();
-    return g;
+    return fclu::mesh_of_flat<BV>(tris);
 }
 
 /// FCL's linear interpolation motion about the model origin, counting its integrate() calls.
