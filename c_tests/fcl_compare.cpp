@@ -566,27 +566,17 @@ int main(int argc, char **argv) {
     Ctx c;
     c.opt = parse_options(argc, argv);
     c.rng = Rng(c.opt.seed);
-    std::printf("fcl_compare: seed %llu, scale %g, models [%s]\n", static_cast<unsigned long long>(c.opt.seed),
-                c.opt.scale, join(c.opt.models_dirs).c_str());
+    announce("fcl_compare", c.opt);
     const auto t0 = std::chrono::steady_clock::now();
-    for (const Workload &w : workloads(c)) {
-        if (w.name.find(c.opt.only) == std::string::npos) continue;
-        const auto t1 = std::chrono::steady_clock::now();
-        const long failed_before = c.rep.failed();
+    return run_workloads(c.rep, c.opt, workloads(c), "poses", t0, [&](const Workload &w) -> size_t {
         Objects ob(w);
-        c.rep.set_context(w.name);
         if (!c.rep.check(ob.oa.build_rc == PQP_OK && ob.ob.build_rc == PQP_OK,
                          fmt("model build rc %d / %d", ob.oa.build_rc, ob.ob.build_rc)))
-            continue;
+            return 0;
         if (ob.ha)
             c.rep.check(ob.ha->build_rc == PQP_OK && ob.hb->build_rc == PQP_OK, "PQP.h model build");
         const std::vector<PosePair> poses = make_poses(c, w, ob.fcl);
         for (size_t k = 0; k < poses.size(); ++k) compare_pose(c, ob, poses[k], int(k));
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-        std::printf("  %-48s %5zu tris x %5zu tris, %4zu poses, %6.2f s%s\n", w.name.c_str(), w.a.tris.size(),
-                    w.b.tris.size(), poses.size(), secs, c.rep.failed() > failed_before ? "  FAILURES" : "");
-        std::fflush(stdout);
-    }
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return c.rep.finish(secs);
+        return poses.size();
+    });
 }

@@ -222,8 +222,7 @@ int main(int argc, char **argv) {
     Ctx c;
     c.opt = parse_options(argc, argv);
     c.rng = Rng(c.opt.seed);
-    std::printf("primitive_compare: seed %llu, scale %g, models [%s]\n",
-                static_cast<unsigned long long>(c.opt.seed), c.opt.scale, join(c.opt.models_dirs).c_str());
+    announce("primitive_compare", c.opt);
     const auto t0 = std::chrono::steady_clock::now();
     const Mesh bunny = load_or(c.opt, "bunny.tris", make_sphere(1.0, 20, 40));
     const Mesh torus = load_or(c.opt, "torus.tris", make_torus(1.0, 0.3, 30, 20));

@@ -404,25 +404,15 @@ int main(int argc, char **argv) {
     Ctx c;
     c.opt = parse_options(argc, argv);
     c.rng = Rng(c.opt.seed);
-    std::printf("toc_compare: seed %llu, scale %g, models [%s]\n", static_cast<unsigned long long>(c.opt.seed),
-                c.opt.scale, join(c.opt.models_dirs).c_str());
+    announce("toc_compare", c.opt);
     const auto t0 = std::chrono::steady_clock::now();
-    for (const Workload &w : workloads(c)) {
-        if (w.name.find(c.opt.only) == std::string::npos) continue;
-        const auto t1 = std::chrono::steady_clock::now();
-        const long failed_before = c.rep.failed();
+    return run_workloads(c.rep, c.opt, workloads(c), "motions", t0, [&](const Workload &w) -> size_t {
         const OurModel oa(w.a), ob(w.b);
-        c.rep.set_context(w.name);
-        if (!c.rep.check(oa.build_rc == PQP_OK && ob.build_rc == PQP_OK, "model build")) continue;
+        if (!c.rep.check(oa.build_rc == PQP_OK && ob.build_rc == PQP_OK, "model build")) return 0;
         const auto fa = flat(w.a), fb = flat(w.b);
         const FclSide<fcl::RSSd> rss{"RSS", toc::fcl_mesh<fcl::RSSd>(fa), toc::fcl_mesh<fcl::RSSd>(fb)};
         const FclSide<fcl::OBBRSSd> obbrss{"OBBRSS", toc::fcl_mesh<fcl::OBBRSSd>(fa), toc::fcl_mesh<fcl::OBBRSSd>(fb)};
         for (const Case &cs : w.cases) run_case(c, oa, ob, w, cs, rss, obbrss);
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-        std::printf("  %-40s %5zu tris x %5zu tris, %4zu motions, %6.2f s%s\n", w.name.c_str(), w.a.tris.size(),
-                    w.b.tris.size(), w.cases.size(), secs, c.rep.failed() > failed_before ? "  FAILURES" : "");
-        std::fflush(stdout);
-    }
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return c.rep.finish(secs);
+        return w.cases.size();
+    });
 }

@@ -816,6 +816,11 @@ std::string pose_class(const PosePair &pp) {
     return cls;
 }
 
+void announce(const char *program, const Options &o) {
+    std::printf("%s: seed %llu, scale %g, models [%s]\n", program, static_cast<unsigned long long>(o.seed), o.scale,
+                join(o.models_dirs).c_str());
+}
+
 Options parse_options(int argc, char **argv) {
     Options o;
     for (int i = 1; i < argc; ++i) {

@@ -2,7 +2,9 @@
 // wrappers over our C API (and the PQP.h drop-in), and the report that decides pass/fail.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <string>
@@ -257,5 +259,28 @@ struct Options {
 };
 Options parse_options(int argc, char **argv);
 int scaled(const Options &o, int n);  ///< max(1, round(n * scale))
+/// Prints the program's first line: its name, the seed, the scale and the model directories.
+void announce(const char *program, const Options &o);
+
+/// The main loop of the programs that compare workloads of two meshes (`w.name`, `w.a`, `w.b`):
+/// for each workload whose name contains --only, `run(w)` checks it and returns how many poses (or
+/// motions: `unit`) it checked; a line with the sizes, that count, the time and whether anything
+/// failed follows. Returns the report's exit code, timed from `start`.
+template <typename W, typename Run>
+int run_workloads(Report &rep, const Options &o, const std::vector<W> &ws, const char *unit,
+                  std::chrono::steady_clock::time_point start, Run run) {
+    for (const W &w : ws) {
+        if (w.name.find(o.only) == std::string::npos) continue;
+        const auto t1 = std::chrono::steady_clock::now();
+        const long failed_before = rep.failed();
+        rep.set_context(w.name);
+        const size_t checked = run(w);
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+        std::printf("  %-48s %5zu tris x %5zu tris, %4zu %s, %6.2f s%s\n", w.name.c_str(), w.a.tris.size(),
+                    w.b.tris.size(), checked, unit, secs, rep.failed() > failed_before ? "  FAILURES" : "");
+        std::fflush(stdout);
+    }
+    return rep.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
 
 }  // namespace ht
