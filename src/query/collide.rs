@@ -128,45 +128,39 @@ pub fn collide_into(
             id2: b2.ids[tb],
         })
     };
-    let mut stats = search_pairs(&mut result.pairs, b1, b2, &rel, mode, false, leaf_pair);
+    let mut stats = search_pairs(&mut result.pairs, b1, b2, &rel, mode, leaf_pair);
     stats.query_time_secs = start.elapsed().as_secs_f64();
     result.stats = stats;
     Ok(())
 }
 
-/// The search of [`collide_into`] (and of the self-collision query) on the models' collision
-/// volume (the swept sphere volumes if both models ask for them, else the boxes): see [`search`].
-/// `leaf_pair` gets the triangles' leaf slots and model 2's triangle posed by `rel` in model 1's
-/// frame (unposed when `same`).
-pub(super) fn search_pairs(
+/// The search of [`collide_into`] on the models' collision volume (the swept sphere volumes if
+/// both models ask for them, else the boxes): see [`search`]. `leaf_pair` gets the triangles' leaf
+/// slots and model 2's triangle posed by `rel` in model 1's frame.
+fn search_pairs(
     pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
     mode: ContactMode,
-    same: bool,
     leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
 ) -> Stats {
     if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv {
-        search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.ssv(r))
+        search(pairs, b1, b2, rel, mode, leaf_pair, |b, r| b.ssv(r))
     } else {
-        search(pairs, b1, b2, rel, mode, same, leaf_pair, |b, r| b.obb(r))
+        search(pairs, b1, b2, rel, mode, leaf_pair, |b, r| b.obb(r))
     }
 }
 
 /// The search on the overlap volume `volume` picks from each node: depth first, descending the
 /// larger volume; `leaf_pair` tests the triangles (by leaf slot) of overlapping leaf pairs and
-/// gives the pair to report, if any. `same`: `b1` and `b2` are one hierarchy searched against
-/// itself (`rel` the identity): a node against itself is its children against themselves and
-/// against each other, so each pair of distinct triangles is met once.
-#[allow(clippy::too_many_arguments)]
+/// gives the pair to report, if any.
 fn search<V: OverlapVolume>(
     pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
     mode: ContactMode,
-    same: bool,
     mut leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
@@ -183,23 +177,10 @@ fn search<V: OverlapVolume>(
         bound: 0.0,
     });
     while let Some(p) = stack.pop() {
-        if same && p.a == p.b {
-            if !p.a.is_leaf() {
-                let [c0, c1] = b1.children(p.a);
-                stack.push(NodePair { a: c0, b: c1, ..p });
-                stack.push(NodePair { a: c1, b: c1, ..p });
-                stack.push(NodePair { a: c0, b: c0, ..p });
-            }
-            continue;
-        }
         if p.a.is_leaf() && p.b.is_leaf() {
             stats.tri_tests += 1;
             let tb = p.b.triangle();
-            let moved = if same {
-                b2.tri(tb)
-            } else {
-                *tris2.get(p.b, || to_1(b2.tri(tb)))
-            };
+            let moved = *tris2.get(p.b, || to_1(b2.tri(tb)));
             if let Some(pair) = leaf_pair(p.a.triangle(), tb, &moved) {
                 pairs.push(pair);
                 if mode == ContactMode::First {
@@ -207,30 +188,6 @@ fn search<V: OverlapVolume>(
                 }
             }
             continue;
-        }
-        // Against itself, a triangle against a node of two triangles goes straight to the two
-        // triangle tests: in a mesh such pairs are mostly neighbours, whose volumes overlap and
-        // whose test is cheaper than the volumes'.
-        if same && (p.a.is_leaf() || p.b.is_leaf()) {
-            let (leaf, node) = if p.a.is_leaf() {
-                (p.a, p.b)
-            } else {
-                (p.b, p.a)
-            };
-            let [c0, c1] = b1.children(node);
-            if c0.is_leaf() && c1.is_leaf() {
-                stack.push(NodePair {
-                    a: leaf,
-                    b: c1,
-                    ..p
-                });
-                stack.push(NodePair {
-                    a: leaf,
-                    b: c0,
-                    ..p
-                });
-                continue;
-            }
         }
         // A node against a triangle: volumes with a direct test skip the triangle's own volume.
         if p.a.is_leaf() || p.b.is_leaf() {
