@@ -87,9 +87,11 @@ impl ClosestSearch<'_> {
             axes: self.front.is_some(),
             exact: true,
         };
-        let moved = vb.posed(&self.rel, false);
+        // Through the table of posed volumes: the nodes of a front come in the order the last
+        // search left them, so that consecutive ones often share model 2's node.
+        let moved = self.leaves.posed.get(b, true, vb, &self.rel);
         let [(bound, axis)] =
-            Ssv::bounds_against([va], &moved, &self.rel, false, want, cutoff, self.slack);
+            Ssv::bounds_against([va], moved, &self.rel, false, want, cutoff, self.slack);
         (NodePair { a, b, bound }, axis)
     }
 }
