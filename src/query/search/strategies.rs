@@ -57,7 +57,7 @@ impl ClosestSearch<'_> {
                         let keep = c.bound < cut;
                         // Its volumes on their way into the cache while the search goes on (the
                         // far child's subtree comes first only after the near child's).
-                        if keep {
+                        if keep && self.prefetch {
                             prefetch_children(self.b1, self.b2, &c);
                         }
                         stack.push_if(c, keep);
