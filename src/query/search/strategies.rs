@@ -4,6 +4,7 @@
 //! caller's stop rule says so.
 
 use super::ClosestSearch;
+use super::bounds::prefetch_children;
 use crate::math::{Vec3, least};
 use crate::query::front::{FrontPair, Motion};
 use crate::query::queue::RadixQueue;
@@ -54,6 +55,11 @@ impl ClosestSearch<'_> {
                 if self.front.is_none() {
                     for c in [far, near] {
                         let keep = c.bound < cut;
+                        // Its volumes on their way into the cache while the search goes on (the
+                        // far child's subtree comes first only after the near child's).
+                        if keep && self.prefetch {
+                            prefetch_children(self.b1, self.b2, &c);
+                        }
                         stack.push_if(c, keep);
                         self.pruned_min =
                             least(self.pruned_min, if keep { f64::INFINITY } else { c.bound });
