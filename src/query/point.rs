@@ -11,7 +11,7 @@ use crate::bounding_volume::Ssv;
 use crate::bvh::{Bvh, MAX_DEPTH, NodeKind, NodeRef, RayChild, RayTree};
 use crate::error::Error;
 use crate::geometry::{Tri, point_triangle};
-use crate::math::{Pose, RelPose, Vec3, most};
+use crate::math::{Pose, RelPose, UNDERFLOW_SLACK, Vec3, most};
 use crate::model::Model;
 use std::cell::RefCell;
 
@@ -36,7 +36,9 @@ pub struct PointResult {
 /// by a priority-directed descent of the hierarchy (the node of least distance bound first),
 /// pruned by the swept sphere volumes' distance bounds and by the best distance so far
 /// (`max_distance` to start with); on models of at most 8,192 triangles, by a depth-first descent
-/// of the ray casts' tree of boxes instead (built on the first such query, about 40 B/triangle).
+/// of the ray casts' tree of boxes instead, where the exact routine runs only for triangles that a
+/// cheap bound from each triangle's frame (plane and edges) cannot rule out (the tree and the
+/// frames are built on the first such query, about 40 + 248 B/triangle).
 /// Degenerate triangles count as the segment or point they span.
 ///
 /// Errors: `UnprocessedModel` (not built), `NonFinitePose`, `NonFiniteCoordinate` (a coordinate
@@ -125,16 +127,9 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
     let mut best: Option<Nearest> = None;
     let mut cutoff = max_distance;
-    let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
-        let tri = bvh.tri(t);
-        // The triangle's box first: a triangle whose box is farther than the cutoff (by more
-        // than the bounds' rounding allowance) cannot be accepted below, and its exact distance
-        // (ten times the box's cost) is not needed.
-        let limit = *cutoff + slack;
-        if box_gap_squared(p, &tri) > limit * limit || plane_beyond(p, &tri, limit) {
-            return;
-        }
-        let c = point_triangle(p, &tri);
+    // Triangle `t` by the exact routine, kept if nearer.
+    let exact = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let c = point_triangle(p, &bvh.tri(t));
         // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
         // equally near triangles.
         if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
@@ -146,11 +141,34 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
             });
         }
     };
+    let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let tri = bvh.tri(t);
+        // The triangle's box first: a triangle whose box is farther than the cutoff (by more
+        // than the bounds' rounding allowance) cannot be accepted below, and its exact distance
+        // (ten times the box's cost) is not needed.
+        let limit = *cutoff + slack;
+        if box_gap_squared(p, &tri) > limit * limit || plane_beyond(p, &tri, limit) {
+            return;
+        }
+        exact(t, cutoff, best);
+    };
     let root = bvh.root();
     if bvh.faces.len() <= BOX_SEARCH_TRIANGLES
         && let NodeKind::Inner(_) = root.kind()
         && let Ok(tree) = bvh.ray_tree()
+        && let Ok(frames) = tree.triangle_bounds(bvh)
     {
+        // A triangle whose frame's distance exceeds the cutoff by more than both its rounding
+        // and the exact routine's cannot be accepted (a triangle without a frame has bound NaN,
+        // never skipped).
+        let allowance = FRAME_ALLOWANCE * (p.abs().sum() + bvh.scale) + UNDERFLOW_SLACK;
+        let leaf = |j: u32, cutoff: &mut f64, best: &mut Option<Nearest>| {
+            let reach = *cutoff + allowance;
+            if frames.distance_squared(j, p) > reach * reach {
+                return;
+            }
+            exact(tree.slot(j), cutoff, best);
+        };
         nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
         return best;
     }
@@ -204,21 +222,28 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
 }
 
 /// Models of at most this many triangles find the nearest triangle in the ray tree's boxes
-/// ([`Bvh::ray_tree`], built on their first ray cast or point query, about 40 B/triangle): on the
+/// ([`Bvh::ray_tree`], built on their first ray cast or point query, about 40 B/triangle, and the
+/// triangles' frames, 248 B/triangle, built on the first point query): on the
 /// bunny (2,204 triangles) it took half the time of the search of the swept sphere volumes, on a
 /// million-triangle closed sphere three times as long (a box's bound is 0 for the many points
 /// inside the boxes, where a swept sphere volume's is not). BENCHMARKS.md, section 26.
 const BOX_SEARCH_TRIANGLES: usize = 8192;
 
+/// The allowance of the triangles' frames' bound ([`TriangleBounds::distance_squared`](crate::bvh::TriangleBounds::distance_squared)), relative
+/// to the point's coordinate sum plus the model's scale: the bound is within a few thousand ulps
+/// of these magnitudes of the distance, times at most 1e3 near a vertex (see there), so within
+/// about 2e-9 of them; the exact routine's distance within less. Fifty times that.
+const FRAME_ALLOWANCE: f64 = 1e-7;
+
 /// The search of [`nearest`] in the ray tree's boxes: depth-first, the nearest box first, pruned
 /// by the squared distance to each box against the cutoff (squared, rounded up); `leaf` tests a
-/// triangle by slot and lowers the cutoff.
+/// triangle by its position in the tree's order and lowers the cutoff.
 fn nearest_in_boxes(
     tree: &RayTree,
     p: &Vec3,
     cutoff: &mut f64,
     best: &mut Option<Nearest>,
-    leaf: impl Fn(usize, &mut f64, &mut Option<Nearest>),
+    leaf: impl Fn(u32, &mut f64, &mut Option<Nearest>),
 ) {
     // The gaps' subtraction rounds by an ulp of the larger operand: far less than this.
     let slack = 1e-12 * (p.amax() + tree.extent()) + 1e-300;
@@ -258,7 +283,7 @@ fn nearest_in_boxes(
             }
             RayChild::Leaf { first, count } => {
                 for j in first..first + count {
-                    leaf(tree.slot(j), cutoff, best);
+                    leaf(j, cutoff, best);
                 }
             }
         }
