@@ -28,17 +28,19 @@ use crate::math::Vec3;
 struct TriangleFrame {
     /// The unit normal and its offset (`n . v0`).
     plane: [f64; 4],
-    /// Per edge (from vertex `i` to `i + 1`): the unit normal in the plane pointing away from
-    /// the triangle and its offset (`m . v_i`).
-    side: [[f64; 4]; 3],
-    /// Per edge: the unit direction, and its products with the edge's two ends.
-    along: [[f64; 5]; 3],
+    /// Per edge `i` (from vertex `i` to `i + 1`), in column `i`: the unit normal in the plane
+    /// pointing away from the triangle (rows x, y, z) and its offset (`m . v_i`, row 3). Edges
+    /// side by side, so that the three compile to vector operations.
+    side: [[f64; 3]; 4],
+    /// Per edge `i`, in column `i`: the unit direction (rows x, y, z), and its products with the
+    /// edge's two ends (rows 3 and 4).
+    along: [[f64; 3]; 5],
 }
 
 const UNTRUSTED: TriangleFrame = TriangleFrame {
     plane: [f64::NAN; 4],
-    side: [[f64::NAN; 4]; 3],
-    along: [[f64::NAN; 5]; 3],
+    side: [[f64::NAN; 3]; 4],
+    along: [[f64::NAN; 3]; 5],
 };
 
 /// Triangles whose smallest angle has a sine below this (slivers, and collinear or repeated
@@ -79,8 +81,15 @@ impl TriangleFrame {
             let t = e[i].normalize();
             let m = t.cross(&n);
             let (a, b) = (v[i], v[(i + 1) % 3]);
-            f.side[i] = [m.x, m.y, m.z, m.dot(&a)];
-            f.along[i] = [t.x, t.y, t.z, t.dot(&a), t.dot(&b)];
+            for (row, x) in [m.x, m.y, m.z, m.dot(&a)].into_iter().enumerate() {
+                f.side[row][i] = x;
+            }
+            for (row, x) in [t.x, t.y, t.z, t.dot(&a), t.dot(&b)]
+                .into_iter()
+                .enumerate()
+            {
+                f.along[row][i] = x;
+            }
         }
         f
     }
@@ -120,22 +129,26 @@ impl TriangleBounds {
     #[inline(always)]
     pub fn distance_squared(&self, j: u32, p: &Vec3) -> f64 {
         let f = &self.frames[j as usize];
-        let dot = |a: &[f64], p: &Vec3| a[0] * p.x + a[1] * p.y + a[2] * p.z;
-        let h = dot(&f.plane, p) - f.plane[3];
-        let mut lateral = f64::INFINITY;
+        let h = f.plane[0] * p.x + f.plane[1] * p.y + f.plane[2] * p.z - f.plane[3];
+        let (m, t) = (&f.side, &f.along);
+        let mut lateral = [0.0; 3];
         for i in 0..3 {
-            let o = dot(&f.side[i], p) - f.side[i][3];
-            let s = dot(&f.along[i], p);
-            let (before, beyond) = (f.along[i][3] - s, s - f.along[i][4]);
+            let o = m[0][i] * p.x + m[1][i] * p.y + m[2][i] * p.z - m[3][i];
+            let s = t[0][i] * p.x + t[1][i] * p.y + t[2][i] * p.z;
+            let (before, beyond) = (t[3][i] - s, s - t[4][i]);
             let a = if before > beyond { before } else { beyond };
             let a = if a > 0.0 { a } else { 0.0 };
-            let d = o * o + a * a;
             // Only the edges whose outer side holds the point: the nearest point of a triangle
             // to a point outside it lies on such an edge.
-            if o > 0.0 && d < lateral {
-                lateral = d;
-            }
+            lateral[i] = if o > 0.0 {
+                o * o + a * a
+            } else {
+                f64::INFINITY
+            };
         }
+        let least = |x: f64, y: f64| if y < x { y } else { x };
+        let lateral = least(least(lateral[0], lateral[1]), lateral[2]);
+        // Inside every edge's line: on the plane's normal through the triangle.
         let lateral = if lateral == f64::INFINITY {
             0.0
         } else {

@@ -14,6 +14,7 @@ use crate::geometry::{Tri, point_triangle};
 use crate::math::{Pose, RelPose, UNDERFLOW_SLACK, Vec3, most};
 use crate::model::Model;
 use std::cell::RefCell;
+use std::mem::MaybeUninit;
 
 /// The answer of [`closest_point`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -249,7 +250,9 @@ fn nearest_in_boxes(
     let slack = 1e-12 * (p.amax() + tree.extent()) + 1e-300;
     let q = [p.x, p.y, p.z];
     let reach = |c: f64| c * c * (1.0 + 1e-12);
-    let mut stack = [(RayChild::Inner(0), 0.0f64); 3 * MAX_DEPTH + 4];
+    // Left uninitialised: clearing an array sized for the deepest tree cost more than a small
+    // model's whole search. Entries below `len` are written before they are read.
+    let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
     let mut len = 0;
     let mut node = RayChild::Inner(tree.root());
     loop {
@@ -274,7 +277,7 @@ fn nearest_in_boxes(
                 if n > 0 {
                     for &(k, d) in &near[..n - 1] {
                         // Checked indexing: the tree's depth bound keeps it in range.
-                        stack[len] = (tree.child(i, k), d);
+                        stack[len] = MaybeUninit::new((tree.child(i, k), d));
                         len += 1;
                     }
                     node = tree.child(i, near[n - 1].0);
@@ -292,7 +295,8 @@ fn nearest_in_boxes(
                 return;
             }
             len -= 1;
-            let (next, d) = stack[len];
+            // SAFETY: every entry below the stack's length was written when it was pushed.
+            let (next, d) = unsafe { stack[len].assume_init() };
             if d <= reach(*cutoff) {
                 node = next;
                 break;
