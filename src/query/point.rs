@@ -128,9 +128,9 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
     let mut best: Option<Nearest> = None;
     let mut cutoff = max_distance;
-    // Triangle `t` by the exact routine, kept if nearer.
-    let exact = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
-        let c = point_triangle(p, &bvh.tri(t));
+    // Triangle `tri` (slot `t`) by the exact routine, kept if nearer.
+    let exact = |t: usize, tri: &Tri, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let c = point_triangle(p, tri);
         // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
         // equally near triangles.
         if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
@@ -151,7 +151,7 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         if box_gap_squared(p, &tri) > limit * limit || plane_beyond(p, &tri, limit) {
             return;
         }
-        exact(t, cutoff, best);
+        exact(t, &tri, cutoff, best);
     };
     let root = bvh.root();
     if bvh.faces.len() <= BOX_SEARCH_TRIANGLES
@@ -168,7 +168,8 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
             if frames.distance_squared(j, p) > reach * reach {
                 return;
             }
-            exact(tree.slot(j), cutoff, best);
+            let t = tree.slot(j);
+            exact(t, &bvh.tri(t), cutoff, best);
         };
         nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
         return best;
