@@ -8,9 +8,9 @@ use super::bound_heap::BoundHeap;
 use super::prepare_point as prepare;
 use super::winding::inside;
 use crate::bounding_volume::Ssv;
-use crate::bvh::{Bvh, MAX_DEPTH, NodeKind, NodeRef, RayChild, RayTree};
+use crate::bvh::{Bvh, MAX_DEPTH, NodeKind, NodeRef, RayChild, RayTree, TriangleBounds};
 use crate::error::Error;
-use crate::geometry::{Tri, point_triangle};
+use crate::geometry::{ClosestPoints, Tri, point_triangle};
 use crate::math::{Pose, RelPose, UNDERFLOW_SLACK, Vec3, most};
 use crate::model::Model;
 use std::cell::RefCell;
@@ -128,20 +128,6 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     let slack = Ssv::slack_for(bvh.scale, p.abs().sum(), &RelPose::identity());
     let mut best: Option<Nearest> = None;
     let mut cutoff = max_distance;
-    // Triangle `tri` (slot `t`) by the exact routine, kept if nearer.
-    let exact = |t: usize, tri: &Tri, cutoff: &mut f64, best: &mut Option<Nearest>| {
-        let c = point_triangle(p, tri);
-        // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
-        // equally near triangles.
-        if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
-            *cutoff = c.distance;
-            *best = Some(Nearest {
-                slot: t,
-                distance: c.distance,
-                q: c.q,
-            });
-        }
-    };
     let leaf = |t: usize, cutoff: &mut f64, best: &mut Option<Nearest>| {
         let tri = bvh.tri(t);
         // The triangle's box first: a triangle whose box is farther than the cutoff (by more
@@ -151,7 +137,7 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         if box_gap_squared(p, &tri) > limit * limit || plane_beyond(p, &tri, limit) {
             return;
         }
-        exact(t, &tri, cutoff, best);
+        keep(t, point_triangle(p, &tri), cutoff, best);
     };
     let root = bvh.root();
     if bvh.faces.len() <= BOX_SEARCH_TRIANGLES
@@ -159,20 +145,7 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         && let Ok(tree) = bvh.ray_tree()
         && let Ok(frames) = tree.triangle_bounds(bvh)
     {
-        // A triangle whose frame's distance exceeds the cutoff by more than both its rounding
-        // and the exact routine's cannot be accepted (a triangle without a frame has bound NaN,
-        // never skipped).
-        let allowance = FRAME_ALLOWANCE * (p.abs().sum() + bvh.scale) + UNDERFLOW_SLACK;
-        let leaf = |j: u32, cutoff: &mut f64, best: &mut Option<Nearest>| {
-            let reach = *cutoff + allowance;
-            if frames.distance_squared(j, p) > reach * reach {
-                return;
-            }
-            let t = tree.slot(j);
-            exact(t, &bvh.tri(t), cutoff, best);
-        };
-        nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
-        return best;
+        return nearest_small(bvh, tree, frames, p, max_distance);
     }
     if let NodeKind::Leaf(t) = root.kind() {
         leaf(t, &mut cutoff, &mut best);
@@ -223,6 +196,55 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     best
 }
 
+/// [`nearest`] on a small model: the search of its ray tree's boxes ([`nearest_in_boxes`]), each
+/// triangle tested exactly only where its frame's bound does not rule it out. A function of its
+/// own, so that the compiler lays out its registers apart from the volumes' search.
+#[inline(never)]
+fn nearest_small(
+    bvh: &Bvh,
+    tree: &RayTree,
+    frames: &TriangleBounds,
+    p: &Vec3,
+    max_distance: f64,
+) -> Option<Nearest> {
+    let (mut best, mut cutoff) = (None, max_distance);
+    // A triangle whose frame's distance exceeds the cutoff by more than both its rounding and
+    // the exact routine's cannot be accepted (a triangle without a frame has bound NaN, never
+    // skipped).
+    let allowance = FRAME_ALLOWANCE * (p.abs().sum() + bvh.scale) + UNDERFLOW_SLACK;
+    let leaf = |j: u32, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let reach = *cutoff + allowance;
+        if frames.distance_squared(j, p) > reach * reach {
+            return;
+        }
+        exact(bvh, p, tree.slot(j), cutoff, best);
+    };
+    nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
+    best
+}
+
+/// The exact test of the triangle of slot `t`, kept if nearer ([`keep`]); out of line, which keeps
+/// the box search's loop small (the test runs for few of the triangles it visits).
+#[inline(never)]
+fn exact(bvh: &Bvh, p: &Vec3, t: usize, cutoff: &mut f64, best: &mut Option<Nearest>) {
+    keep(t, point_triangle(p, &bvh.tri(t)), cutoff, best);
+}
+
+/// Keeps `c`, the exact routine's answer for the triangle of slot `t`, if nearer than the best so
+/// far: `<=` the cutoff on the first keeps a triangle exactly at `max_distance`; `<` the best
+/// after keeps the first of equally near triangles.
+#[inline(always)]
+fn keep(t: usize, c: ClosestPoints, cutoff: &mut f64, best: &mut Option<Nearest>) {
+    if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
+        *cutoff = c.distance;
+        *best = Some(Nearest {
+            slot: t,
+            distance: c.distance,
+            q: c.q,
+        });
+    }
+}
+
 /// Models of at most this many triangles find the nearest triangle in the ray tree's boxes
 /// ([`Bvh::ray_tree`], built on their first ray cast or point query, about 40 B/triangle, and the
 /// triangles' frames, 248 B/triangle, built on the first point query): on the
@@ -231,7 +253,7 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
 /// inside the boxes, where a swept sphere volume's is not). BENCHMARKS.md, section 26.
 const BOX_SEARCH_TRIANGLES: usize = 8192;
 
-/// The allowance of the triangles' frames' bound ([`TriangleBounds::distance_squared`](crate::bvh::TriangleBounds::distance_squared)), relative
+/// The allowance of the triangles' frames' bound ([`TriangleBounds::distance_squared`]), relative
 /// to the point's coordinate sum plus the model's scale: the bound is within a few thousand ulps
 /// of these magnitudes of the distance, times at most 1e3 near a vertex (see there), so within
 /// about 2e-9 of them; the exact routine's distance within less. Fifty times that.
