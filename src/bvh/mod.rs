@@ -17,6 +17,7 @@ mod boundary;
 mod build;
 mod build_threads;
 mod far_field;
+mod point_bounds;
 mod pqp_view;
 mod principal_axes;
 mod ray_tree;
@@ -26,6 +27,7 @@ mod volume_choice;
 
 pub(crate) use boundary::{Boundaries, BoundaryLoop, NodeSurface};
 pub(crate) use build::MAX_DEPTH;
+pub(crate) use point_bounds::TriangleBounds;
 pub(crate) use pqp_view::PqpBv;
 pub(crate) use ray_tree::{Lane, RayChild, RayTree, Slab, SlabRay};
 pub use volume_choice::{CollisionVolume, VolumeKind};

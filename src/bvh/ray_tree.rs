@@ -20,10 +20,11 @@
 //! The nodes of a large tree are offered huge pages (see [`huge_page_copy`]).
 
 use super::saved::advise_huge_pages;
-use super::{Bvh, MAX_DEPTH};
+use super::{Bvh, MAX_DEPTH, TriangleBounds};
 use crate::error::Error;
 use crate::geometry::predicates::max_abs;
 use crate::math::Vec3;
+use std::sync::OnceLock;
 
 /// The most triangles a leaf holds.
 pub(crate) const LEAF_MAX: usize = 2;
@@ -182,6 +183,9 @@ pub(crate) struct RayTree {
     order: Vec<u32>,
     /// The largest coordinate magnitude of the vertices.
     extent: f64,
+    /// The triangles' frames for the closest-point search (see `point_bounds.rs`), computed on a
+    /// small model's first closest point.
+    pub(super) points: OnceLock<TriangleBounds>,
 }
 
 /// A node of the binary tree the build makes before collapsing it: its box, and its children
@@ -266,6 +270,7 @@ impl RayTree {
             nodes: Vec::new(),
             order: Vec::new(),
             extent: root.lo.amax().max(root.hi.amax()),
+            points: OnceLock::new(),
         };
         if root.kids[0] == LEAF {
             let mut w = EMPTY;
@@ -321,6 +326,7 @@ impl RayTree {
         self.nodes.capacity() * std::mem::size_of::<WideNode>()
             + self.order.capacity() * std::mem::size_of::<u32>()
             + std::mem::size_of::<RayTree>()
+            + self.points.get().map_or(0, TriangleBounds::memory_usage)
     }
 
     /// The root's index.
@@ -403,7 +409,8 @@ impl RayTree {
 
     /// Lower bounds on the squared distance from `p` to each child box of node `i`: per axis the
     /// gap between `p` and the box, less `slack` (covering the subtraction's rounding), squared
-    /// and summed; infinity for an unused slot.
+    /// and summed; infinity for an unused slot (whose bounds are `+inf`: its lower bound's gap
+    /// is infinite, with no test, so the lanes stay side by side).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lanes side by side, as in `cut`
     pub fn box_gaps(&self, i: u32, p: &[f64; 3], slack: f64) -> [f64; WIDTH] {
@@ -417,11 +424,6 @@ impl RayTree {
                 let g = if below > above { below } else { above } - slack;
                 let g = if g > 0.0 { g } else { 0.0 };
                 d2[k] += g * g;
-            }
-        }
-        for k in 0..WIDTH {
-            if n.lo[0][k] > n.hi[0][k] {
-                d2[k] = f64::INFINITY;
             }
         }
         d2

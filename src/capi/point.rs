@@ -51,6 +51,15 @@ unsafe fn point_args<'a>(
 /// When several triangles are equally close, one of them is reported, always the same for the
 /// same model, pose and point.
 ///
+/// Models of at most 8,192 triangles are searched in a tree of axis-aligned boxes with, per
+/// triangle, its plane and edges' frames (a cheap bound that spares most exact tests). The first
+/// pqp_closest_point or pqp_signed_distance on such a model builds them (a few milliseconds for
+/// a few thousand triangles) and keeps them in the model: about 290 bytes per triangle more,
+/// counted by pqp_model_memory_usage (a pqp_ray_cast on the model builds the box tree, about 40
+/// of them, and shares it). If they cannot be allocated the query still answers, by the
+/// bounding-volume hierarchy's search. pqp_model_refit discards them (the next query rebuilds
+/// them). Larger models use the hierarchy's search alone and keep nothing more.
+///
 /// @param out           where the answer is written. Beyond max_distance (the model is farther
 ///                      than it from the point): distance INFINITY, point NaN, triangle -1. A
 ///                      model exactly at max_distance is within it.
@@ -66,7 +75,10 @@ unsafe fn point_args<'a>(
 ///         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a coordinate of point is;
 ///         PQP_ERR_INVALID_ARGUMENT if max_distance is negative or NaN; PQP_ERR_INTERNAL on an
 ///         internal fault. On an error nothing is written. out may overlap the inputs.
-/// Thread safety: any number of queries may use the same model at once from different threads.
+/// Thread safety: any number of queries may use the same model at once from different threads,
+///                the first ones included: concurrent first queries on a small model may each
+///                build its box tree and frames; one of each is kept (the others are freed) and
+///                every query gets the same answers either way.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_closest_point(
     out: *mut pqp_point_result,
@@ -107,7 +119,8 @@ pub unsafe extern "C" fn pqp_closest_point(
 /// hemisphere, the points near its centre). A point on the surface has distance 0. w is computed
 /// hierarchically (near the point from triangles, away from it from each bounding-volume node's
 /// boundary edges), in about logarithmic time per query; the first signed distance on a model
-/// computes those edges and keeps them in the model (pqp_model_memory_usage counts them).
+/// computes those edges and keeps them in the model (pqp_model_memory_usage counts them). The
+/// distance is pqp_closest_point's, with what that keeps in a small model (see there).
 ///
 /// @param out    where the signed distance is written (1 double).
 /// @param R, T   the model's pose (as for pqp_distance).
@@ -122,7 +135,8 @@ pub unsafe extern "C" fn pqp_closest_point(
 ///         PQP_ERR_INTERNAL on an internal fault. On an error nothing is written. out may overlap
 ///         the inputs.
 /// Thread safety: any number of queries may use the same model at once from different threads
-///                (the first ones on a model may each compute its boundary edges; one is kept).
+///                (the first ones on a model may each compute its boundary edges, and on a small
+///                model its box tree and frames; one of each is kept).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_signed_distance(
     out: *mut f64,

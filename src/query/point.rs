@@ -8,12 +8,13 @@ use super::bound_heap::BoundHeap;
 use super::prepare_point as prepare;
 use super::winding::inside;
 use crate::bounding_volume::Ssv;
-use crate::bvh::{Bvh, MAX_DEPTH, NodeKind, NodeRef, RayChild, RayTree};
+use crate::bvh::{Bvh, MAX_DEPTH, NodeKind, NodeRef, RayChild, RayTree, TriangleBounds};
 use crate::error::Error;
-use crate::geometry::{Tri, point_triangle};
-use crate::math::{Pose, RelPose, Vec3, most};
+use crate::geometry::{ClosestPoints, Tri, point_triangle};
+use crate::math::{Pose, RelPose, UNDERFLOW_SLACK, Vec3, most};
 use crate::model::Model;
 use std::cell::RefCell;
+use std::mem::MaybeUninit;
 
 /// The answer of [`closest_point`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,7 +37,9 @@ pub struct PointResult {
 /// by a priority-directed descent of the hierarchy (the node of least distance bound first),
 /// pruned by the swept sphere volumes' distance bounds and by the best distance so far
 /// (`max_distance` to start with); on models of at most 8,192 triangles, by a depth-first descent
-/// of the ray casts' tree of boxes instead (built on the first such query, about 40 B/triangle).
+/// of the ray casts' tree of boxes instead, where the exact routine runs only for triangles that a
+/// cheap bound from each triangle's frame (plane and edges) cannot rule out (the tree and the
+/// frames are built on the first such query, about 40 + 248 B/triangle).
 /// Degenerate triangles count as the segment or point they span.
 ///
 /// Errors: `UnprocessedModel` (not built), `NonFinitePose`, `NonFiniteCoordinate` (a coordinate
@@ -134,25 +137,15 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
         if box_gap_squared(p, &tri) > limit * limit || plane_beyond(p, &tri, limit) {
             return;
         }
-        let c = point_triangle(p, &tri);
-        // `<=` on the first keeps a triangle exactly at max_distance; `<` after keeps the first of
-        // equally near triangles.
-        if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
-            *cutoff = c.distance;
-            *best = Some(Nearest {
-                slot: t,
-                distance: c.distance,
-                q: c.q,
-            });
-        }
+        keep(t, point_triangle(p, &tri), cutoff, best);
     };
     let root = bvh.root();
     if bvh.faces.len() <= BOX_SEARCH_TRIANGLES
         && let NodeKind::Inner(_) = root.kind()
         && let Ok(tree) = bvh.ray_tree()
+        && let Ok(frames) = tree.triangle_bounds(bvh)
     {
-        nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
-        return best;
+        return nearest_small(bvh, tree, frames, p, max_distance);
     }
     if let NodeKind::Leaf(t) = root.kind() {
         leaf(t, &mut cutoff, &mut best);
@@ -203,28 +196,86 @@ fn nearest(bvh: &Bvh, p: &Vec3, max_distance: f64) -> Option<Nearest> {
     best
 }
 
+/// [`nearest`] on a small model: the search of its ray tree's boxes ([`nearest_in_boxes`]), each
+/// triangle tested exactly only where its frame's bound does not rule it out. A function of its
+/// own, so that the compiler lays out its registers apart from the volumes' search.
+#[inline(never)]
+fn nearest_small(
+    bvh: &Bvh,
+    tree: &RayTree,
+    frames: &TriangleBounds,
+    p: &Vec3,
+    max_distance: f64,
+) -> Option<Nearest> {
+    let (mut best, mut cutoff) = (None, max_distance);
+    // A triangle whose frame's distance exceeds the cutoff by more than both its rounding and
+    // the exact routine's cannot be accepted (a triangle without a frame has bound NaN, never
+    // skipped).
+    let allowance = FRAME_ALLOWANCE * (p.abs().sum() + bvh.scale) + UNDERFLOW_SLACK;
+    let leaf = |j: u32, cutoff: &mut f64, best: &mut Option<Nearest>| {
+        let reach = *cutoff + allowance;
+        if frames.distance_squared(j, p) > reach * reach {
+            return;
+        }
+        exact(bvh, p, tree.slot(j), cutoff, best);
+    };
+    nearest_in_boxes(tree, p, &mut cutoff, &mut best, leaf);
+    best
+}
+
+/// The exact test of the triangle of slot `t`, kept if nearer ([`keep`]); out of line, which keeps
+/// the box search's loop small (the test runs for few of the triangles it visits).
+#[inline(never)]
+fn exact(bvh: &Bvh, p: &Vec3, t: usize, cutoff: &mut f64, best: &mut Option<Nearest>) {
+    keep(t, point_triangle(p, &bvh.tri(t)), cutoff, best);
+}
+
+/// Keeps `c`, the exact routine's answer for the triangle of slot `t`, if nearer than the best so
+/// far: `<=` the cutoff on the first keeps a triangle exactly at `max_distance`; `<` the best
+/// after keeps the first of equally near triangles.
+#[inline(always)]
+fn keep(t: usize, c: ClosestPoints, cutoff: &mut f64, best: &mut Option<Nearest>) {
+    if c.distance <= *cutoff && best.as_ref().is_none_or(|b| c.distance < b.distance) {
+        *cutoff = c.distance;
+        *best = Some(Nearest {
+            slot: t,
+            distance: c.distance,
+            q: c.q,
+        });
+    }
+}
+
 /// Models of at most this many triangles find the nearest triangle in the ray tree's boxes
-/// ([`Bvh::ray_tree`], built on their first ray cast or point query, about 40 B/triangle): on the
+/// ([`Bvh::ray_tree`], built on their first ray cast or point query, about 40 B/triangle, and the
+/// triangles' frames, 248 B/triangle, built on the first point query): on the
 /// bunny (2,204 triangles) it took half the time of the search of the swept sphere volumes, on a
 /// million-triangle closed sphere three times as long (a box's bound is 0 for the many points
 /// inside the boxes, where a swept sphere volume's is not). BENCHMARKS.md, section 26.
 const BOX_SEARCH_TRIANGLES: usize = 8192;
 
+/// The allowance of the triangles' frames' bound ([`TriangleBounds::distance_squared`]), relative
+/// to the point's coordinate sum plus the model's scale: the bound is within a few thousand ulps
+/// of these magnitudes of the distance, times at most 1e3 near a vertex (see there), so within
+/// about 2e-9 of them; the exact routine's distance within less. Fifty times that.
+const FRAME_ALLOWANCE: f64 = 1e-7;
+
 /// The search of [`nearest`] in the ray tree's boxes: depth-first, the nearest box first, pruned
 /// by the squared distance to each box against the cutoff (squared, rounded up); `leaf` tests a
-/// triangle by slot and lowers the cutoff.
+/// triangle by its position in the tree's order and lowers the cutoff.
 fn nearest_in_boxes(
     tree: &RayTree,
     p: &Vec3,
     cutoff: &mut f64,
     best: &mut Option<Nearest>,
-    leaf: impl Fn(usize, &mut f64, &mut Option<Nearest>),
+    leaf: impl Fn(u32, &mut f64, &mut Option<Nearest>),
 ) {
     // The gaps' subtraction rounds by an ulp of the larger operand: far less than this.
     let slack = 1e-12 * (p.amax() + tree.extent()) + 1e-300;
     let q = [p.x, p.y, p.z];
     let reach = |c: f64| c * c * (1.0 + 1e-12);
-    let mut stack = [(RayChild::Inner(0), 0.0f64); 3 * MAX_DEPTH + 4];
+    // Left uninitialised: clearing an array sized for the deepest tree cost more than a small
+    // model's whole search. Entries below `len` are written before they are read.
+    let mut stack = [const { MaybeUninit::<(RayChild, f64)>::uninit() }; 3 * MAX_DEPTH + 4];
     let mut len = 0;
     let mut node = RayChild::Inner(tree.root());
     loop {
@@ -249,7 +300,7 @@ fn nearest_in_boxes(
                 if n > 0 {
                     for &(k, d) in &near[..n - 1] {
                         // Checked indexing: the tree's depth bound keeps it in range.
-                        stack[len] = (tree.child(i, k), d);
+                        stack[len] = MaybeUninit::new((tree.child(i, k), d));
                         len += 1;
                     }
                     node = tree.child(i, near[n - 1].0);
@@ -258,7 +309,7 @@ fn nearest_in_boxes(
             }
             RayChild::Leaf { first, count } => {
                 for j in first..first + count {
-                    leaf(tree.slot(j), cutoff, best);
+                    leaf(j, cutoff, best);
                 }
             }
         }
@@ -267,7 +318,8 @@ fn nearest_in_boxes(
                 return;
             }
             len -= 1;
-            let (next, d) = stack[len];
+            // SAFETY: every entry below the stack's length was written when it was pushed.
+            let (next, d) = unsafe { stack[len].assume_init() };
             if d <= reach(*cutoff) {
                 node = next;
                 break;
