@@ -19,6 +19,7 @@ fn add_outer(s: &mut [f64; 6], d: &Vec3, w: f64) {
 /// `weights[i]` times (not all 0): a node's corners from its distinct vertices and their
 /// multiplicities. Two passes: the mean, then the scatter about it (no cancellation however far
 /// the points are from the origin).
+#[cfg(test)]
 pub(super) fn weighted_covariance(points: &[Vec3], weights: &[u32]) -> Mat3 {
     debug_assert_eq!(points.len(), weights.len());
     let mut total = 0.0f64;
@@ -28,7 +29,14 @@ pub(super) fn weighted_covariance(points: &[Vec3], weights: &[u32]) -> Mat3 {
         sum += p * w;
         total += w;
     }
-    let mean = sum / total;
+    weighted_scatter(points, weights, &(sum / total), total)
+}
+
+/// The second pass of [`weighted_covariance`]: the scatter about `mean` (the points' weighted
+/// mean, `total` the weights' sum), divided by `total`. The builder sums the mean as it gathers a
+/// node's points.
+pub(super) fn weighted_scatter(points: &[Vec3], weights: &[u32], mean: &Vec3, total: f64) -> Mat3 {
+    debug_assert_eq!(points.len(), weights.len());
     let mut s = [0.0f64; 6];
     for (p, &w) in points.iter().zip(weights) {
         add_outer(&mut s, &(p - mean), f64::from(w));
