@@ -21,7 +21,7 @@
 //! thread count.
 
 use super::build_threads::{GRAIN, Pool};
-use super::principal_axes::{axes_of, weighted_covariance};
+use super::principal_axes::{axes_of, weighted_scatter};
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
@@ -72,15 +72,14 @@ pub(super) struct Subtree<'a> {
     pub frame: Mat3,
 }
 
-/// One builder's scratch, reused from node to node: the vertex stamps that find a node's distinct
-/// vertices (the index of the node that last listed each vertex), each vertex's position in the
-/// list that last listed it (valid for the node being built: its list was made just before), the
-/// node's points, the same in its frame, its triangles' split keys, and a stack of vertex lists
-/// (each node's, along the path from the subtree's root) with, alongside, how many of the node's
-/// corners each vertex is.
+/// One builder's scratch, reused from node to node: for each vertex, its stamp (the index of the
+/// node that last listed it: what finds a node's distinct vertices) and its position in the list
+/// that last listed it (valid for the node being built: its list was made just before), side by
+/// side so that a corner's look-up reads one place; the node's points, the same in its frame, its
+/// triangles' split keys, and a stack of vertex lists (each node's, along the path from the
+/// subtree's root) with, alongside, how many of the node's corners each vertex is.
 pub(super) struct Scratch {
-    stamps: Vec<u32>,
-    pos: Vec<u32>,
+    slots: Vec<Slot>,
     points: Vec<Vec3>,
     local: Vec<Vec3>,
     keys: Vec<f64>,
@@ -88,15 +87,25 @@ pub(super) struct Scratch {
     counts: Vec<u32>,
 }
 
+/// A vertex's stamp and position (see [`Scratch`]).
+#[derive(Clone, Copy)]
+struct Slot {
+    stamp: u32,
+    pos: u32,
+}
+
 impl Scratch {
     pub fn new(num_verts: usize) -> Result<Scratch, Error> {
-        let mut stamps = with_room(num_verts)?;
-        stamps.resize(num_verts, u32::MAX);
-        let mut pos = with_room(num_verts)?;
-        pos.resize(num_verts, 0);
+        let mut slots = with_room(num_verts)?;
+        slots.resize(
+            num_verts,
+            Slot {
+                stamp: u32::MAX,
+                pos: 0,
+            },
+        );
         Ok(Scratch {
-            stamps,
-            pos,
+            slots,
             points: Vec::new(),
             local: Vec::new(),
             keys: Vec::new(),
@@ -235,7 +244,7 @@ fn build_subtree<'a>(
     scratch.lists.try_reserve(room).map_err(oom)?;
     scratch.counts.try_reserve(room).map_err(oom)?;
     for (i, &v) in sub.verts.iter().enumerate() {
-        scratch.pos[v as usize] = i as u32;
+        scratch.slots[v as usize].pos = i as u32;
     }
     scratch.lists.extend_from_slice(&sub.verts);
     scratch.counts.extend_from_slice(&sub.counts);
@@ -271,7 +280,7 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
 /// `scratch.lists[list..]` (their multiplicities `scratch.counts[list..]`, their positions in the
-/// list `scratch.pos`), into `nodes[0]` (its index `base`), and the subtrees below it into the
+/// list in `scratch.slots`), into `nodes[0]` (its index `base`), and the subtrees below it into the
 /// rest of `nodes`. `guess` is the parent's frame, where the eigensolver starts.
 #[allow(clippy::too_many_arguments)]
 fn node<'a>(
@@ -288,16 +297,25 @@ fn node<'a>(
 ) -> Result<(), Error> {
     let m = recs.len();
     debug_assert!(m >= 2 && nodes.len() == m - 1);
+    // The node's points, and their mean weighted by how many corners each is, in one pass.
     scratch.points.clear();
-    scratch.points.extend(
-        scratch.lists[list..]
-            .iter()
-            .map(|&v| input.verts[v as usize]),
-    );
+    let (mut sum, mut total) = (Vec3::zeros(), 0.0f64);
+    for (&v, &w) in scratch.lists[list..].iter().zip(&scratch.counts[list..]) {
+        let p = input.verts[v as usize];
+        scratch.points.push(p);
+        let w = f64::from(w);
+        sum += p * w;
+        total += w;
+    }
     // The covariance of the node's corners: of its distinct vertices, each weighted by how many
     // corners it is.
     let a = axes_of(
-        &weighted_covariance(&scratch.points, &scratch.counts[list..]),
+        &weighted_scatter(
+            &scratch.points,
+            &scratch.counts[list..],
+            &(sum / total),
+            total,
+        ),
         guess,
     );
     // The frame exactly as the node will give it back.
@@ -312,9 +330,9 @@ fn node<'a>(
     // Each triangle's key: its corners' coordinates along the first axis, summed (three times
     // its centroid's), from the points in the frame that the fits computed.
     scratch.keys.clear();
-    let (pos, local) = (&scratch.pos, &scratch.local);
+    let (slots, local) = (&scratch.slots, &scratch.local);
     scratch.keys.extend(recs.iter().map(|r| {
-        let x = |k: usize| local[pos[r.face[k] as usize] as usize].x;
+        let x = |k: usize| local[slots[r.face[k] as usize].pos as usize].x;
         x(0) + x(1) + x(2)
     }));
     let mid = split(recs, &mut scratch.keys, depth >= MEAN_SPLIT_MAX_DEPTH);
@@ -339,14 +357,16 @@ fn node<'a>(
         let tag = cbase as u32;
         for r in crecs.iter() {
             for &v in &r.face {
-                let v = v as usize;
-                if scratch.stamps[v] != tag {
-                    scratch.stamps[v] = tag;
-                    scratch.pos[v] = (scratch.lists.len() - start) as u32;
-                    scratch.lists.push(v as u32);
+                let slot = &mut scratch.slots[v as usize];
+                if slot.stamp != tag {
+                    *slot = Slot {
+                        stamp: tag,
+                        pos: (scratch.lists.len() - start) as u32,
+                    };
+                    scratch.lists.push(v);
                     scratch.counts.push(1);
                 } else {
-                    scratch.counts[start + scratch.pos[v] as usize] += 1;
+                    scratch.counts[start + slot.pos as usize] += 1;
                 }
             }
         }
