@@ -12,7 +12,7 @@
 use super::rect_distance::rect_distance;
 use super::{BoundingVolume, DistanceVolume, OverlapVolume};
 use crate::geometry::segment_segment;
-use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, avx2_or_portable, frame_from};
+use crate::math::{Mat3, RelPose, UNDERFLOW_SLACK, Vec3, frame_from, use_avx2};
 
 /// The core primitive of a swept sphere volume: what its side lengths make it (see [`Ssv::kind`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -216,10 +216,38 @@ impl Ssv {
         cutoff: f64,
         exact: bool,
     ) -> (f64, Vec3) {
-        avx2_or_portable(
-            #[inline(always)]
-            move || Ssv::cores_distance_body(a, b, enough, cutoff, exact),
-        )
+        #[cfg(target_arch = "x86_64")]
+        if use_avx2() {
+            // SAFETY: the processor has AVX2.
+            return unsafe { Ssv::cores_distance_avx2(a, b, enough, cutoff, exact) };
+        }
+        Ssv::cores_distance_portable(a, b, enough, cutoff, exact)
+    }
+
+    /// The kernel compiled for AVX2 (see `math::use_avx2`), its arguments in registers.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn cores_distance_avx2(
+        a: &Ssv,
+        b: &CompactSsv,
+        enough: f64,
+        cutoff: f64,
+        exact: bool,
+    ) -> (f64, Vec3) {
+        Ssv::cores_distance_body(a, b, enough, cutoff, exact)
+    }
+
+    /// The kernel's portable copy.
+    #[inline(never)]
+    fn cores_distance_portable(
+        a: &Ssv,
+        b: &CompactSsv,
+        enough: f64,
+        cutoff: f64,
+        exact: bool,
+    ) -> (f64, Vec3) {
+        Ssv::cores_distance_body(a, b, enough, cutoff, exact)
     }
 
     /// The kernel of [`cores_distance_here`](Ssv::cores_distance_here).
