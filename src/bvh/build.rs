@@ -150,8 +150,7 @@ impl Bvh {
             volume,
             scale,
         };
-        let mut nodes: Vec<Node> = with_room(n - 1)?;
-        nodes.resize(n - 1, placeholder());
+        let mut nodes = zeroed_nodes(n - 1)?;
         if n > 1 {
             // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = with_room(in_verts.len())?;
@@ -440,54 +439,57 @@ fn share_corners<'a>(
     let mut faces: Vec<[u32; 3]> = with_room(count)?;
     faces.resize(count, [0; 3]);
     let face_ids = faces.as_flattened_mut();
-    let mut distinct = 0u32;
     if threads <= 1 {
-        first_corners(face_ids.len(), &bits, 1, 0, |c, first| {
-            face_ids[c] = if first == c {
-                distinct += 1;
-                distinct - 1
-            } else {
-                face_ids[first]
-            };
-        })?;
-    } else {
-        // Each corner's first corner with the same bits, found by the thread of its hash's share.
-        let mut firsts: Vec<AtomicU32> = with_room(face_ids.len())?;
-        firsts.resize_with(face_ids.len(), || AtomicU32::new(0));
-        let corners = face_ids.len();
-        let part = |p: usize| {
-            first_corners(corners, &bits, threads, p, |c, first| {
-                firsts[c].store(first as u32, Relaxed);
+        // One share: a vertex's number is its pattern's position among the patterns met.
+        let keys = first_corners(face_ids.len(), &bits, 1, 0, |c, _, k| face_ids[c] = k)?;
+        let mut verts: Vec<Vec3> = with_room(keys.len())?;
+        verts.extend(keys.iter().map(|k| {
+            Vec3::new(
+                f64::from_bits(k[0]),
+                f64::from_bits(k[1]),
+                f64::from_bits(k[2]),
+            )
+        }));
+        return Ok((verts, faces));
+    }
+    // Each corner's first corner with the same bits, found by the thread of its hash's share.
+    let mut firsts: Vec<AtomicU32> = with_room(face_ids.len())?;
+    firsts.resize_with(face_ids.len(), || AtomicU32::new(0));
+    let corners = face_ids.len();
+    let part = |p: usize| {
+        first_corners(corners, &bits, threads, p, |c, first, _| {
+            firsts[c].store(first as u32, Relaxed);
+        })
+        .map(drop)
+    };
+    let results: Vec<Result<(), Error>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (1..threads)
+            .map(|p| {
+                std::thread::Builder::new()
+                    .spawn_scoped(s, move || part(p))
+                    .map_err(|_| p)
             })
-        };
-        let results: Vec<Result<(), Error>> = std::thread::scope(|s| {
-            let handles: Vec<_> = (1..threads)
-                .map(|p| {
-                    std::thread::Builder::new()
-                        .spawn_scoped(s, move || part(p))
-                        .map_err(|_| p)
-                })
-                .collect();
-            let mut results = vec![part(0)];
-            for h in handles {
-                // A thread that could not be started: its share is done here.
-                results.push(match h {
-                    Ok(h) => h.join().unwrap_or(Err(Error::Internal)),
-                    Err(p) => part(p),
-                });
-            }
-            results
-        });
-        results.into_iter().collect::<Result<(), Error>>()?;
-        for c in 0..corners {
-            let first = firsts[c].load(Relaxed) as usize;
-            face_ids[c] = if first == c {
-                distinct += 1;
-                distinct - 1
-            } else {
-                face_ids[first]
-            };
+            .collect();
+        let mut results = vec![part(0)];
+        for h in handles {
+            // A thread that could not be started: its share is done here.
+            results.push(match h {
+                Ok(h) => h.join().unwrap_or(Err(Error::Internal)),
+                Err(p) => part(p),
+            });
         }
+        results
+    });
+    results.into_iter().collect::<Result<(), Error>>()?;
+    let mut distinct = 0u32;
+    for c in 0..corners {
+        let first = firsts[c].load(Relaxed) as usize;
+        face_ids[c] = if first == c {
+            distinct += 1;
+            distinct - 1
+        } else {
+            face_ids[first]
+        };
     }
     let mut verts: Vec<Vec3> = with_room(distinct as usize)?;
     for (c, &v) in face_ids.iter().enumerate() {
@@ -500,42 +502,66 @@ fn share_corners<'a>(
 }
 
 /// For each of the `corners` whose hash falls in share `part` of `parts`, in increasing order,
-/// `found(c, first)`: `first` the least corner with the same bits (`bits(c)`). Finds repeats with
-/// a hash table of corners, kept at most half full: expected O(corners).
+/// `found(c, first, k)`: `first` the least corner with the same bits (`bits(c)`), `k` the number
+/// of distinct bit patterns of the share met before `first`'s. Returns those bit patterns, in the
+/// order met. Finds repeats with a hash table, kept at most half full: expected O(corners).
 fn first_corners(
     corners: usize,
     bits: &impl Fn(usize) -> [u64; 3],
     parts: usize,
     part: usize,
-    mut found: impl FnMut(usize, usize),
-) -> Result<(), Error> {
-    // Slots hold a corner index plus one (0: empty). Sized for a mesh's usual one vertex per two
-    // triangles, doubled whenever it gets half full.
+    mut found: impl FnMut(usize, usize, u32),
+) -> Result<Vec<[u64; 3]>, Error> {
+    // The distinct bit patterns met, and each one's first corner: repeats are compared against
+    // these rather than the input's corners, a compact array in which the patterns met lately
+    // (a mesh's repeats are mostly of vertices of nearby triangles) are near each other.
+    let mut keys: Vec<[u64; 3]> = Vec::new();
+    let mut firsts: Vec<u32> = Vec::new();
+    // Slots hold an index into `keys` plus one (0: empty). Sized for a mesh's usual one vertex
+    // per two triangles, doubled whenever it gets half full.
     let mut shift = 64
         - (corners / 3 / parts)
             .max(8)
             .next_power_of_two()
             .trailing_zeros();
     let mut table: Vec<u32> = Vec::new();
-    let grow = |table: &mut Vec<u32>, shift: u32| -> Result<(), Error> {
+    let grow = |table: &mut Vec<u32>, keys: &[[u64; 3]], shift: u32| -> Result<(), Error> {
         let size = 1usize << (64 - shift);
         let mut new: Vec<u32> = with_room(size)?;
         new.resize(size, 0);
-        for &e in table.iter().filter(|&&e| e != 0) {
-            let mut i = (hash(&bits(e as usize - 1)) >> shift) as usize;
+        for (k, key) in keys.iter().enumerate() {
+            let mut i = (hash(key) >> shift) as usize;
             while new[i] != 0 {
                 i = (i + 1) & (size - 1);
             }
-            new[i] = e;
+            new[i] = k as u32 + 1;
         }
         *table = new;
         Ok(())
     };
-    grow(&mut table, shift)?;
-    let mut entries = 0usize;
+    grow(&mut table, &keys, shift)?;
+    let oom = |_| Error::ModelOutOfMemory;
+    // The table's slots are far apart in memory from one corner to the next: each corner's key
+    // and hash are computed `AHEAD` corners early, and its slot fetched into the cache then, so
+    // that the lookups' cache misses overlap.
+    const AHEAD: usize = 16;
+    let key_hash = |c: usize| {
+        if c < corners {
+            let key = bits(c);
+            (key, hash(&key))
+        } else {
+            ([0; 3], 0)
+        }
+    };
+    let mut ring = [([0u64; 3], 0u64); AHEAD];
+    for (c, slot) in ring.iter_mut().enumerate() {
+        *slot = key_hash(c);
+    }
     for c in 0..corners {
-        let key = bits(c);
-        let h = hash(&key);
+        let (key, h) = ring[c % AHEAD];
+        let next = key_hash(c + AHEAD);
+        prefetch(&table, (next.1 >> shift) as usize);
+        ring[c % AHEAD] = next;
         // The share: from bits of the hash that the slot (its top bits) does not use.
         if parts > 1 && ((((h >> 16) & 0xffff) as usize * parts) >> 16) != part {
             continue;
@@ -545,23 +571,42 @@ fn first_corners(
         loop {
             let e = table[i] as usize;
             if e == 0 {
-                table[i] = c as u32 + 1;
-                found(c, c);
-                entries += 1;
-                if 2 * entries > table.len() {
+                let k = keys.len() as u32;
+                keys.try_reserve(1).map_err(oom)?;
+                firsts.try_reserve(1).map_err(oom)?;
+                keys.push(key);
+                firsts.push(c as u32);
+                table[i] = k + 1;
+                found(c, c, k);
+                if 2 * keys.len() > table.len() {
                     shift -= 1;
-                    grow(&mut table, shift)?;
+                    grow(&mut table, &keys, shift)?;
                 }
                 break;
             }
-            if bits(e - 1) == key {
-                found(c, e - 1);
+            if keys[e - 1] == key {
+                found(c, firsts[e - 1] as usize, e as u32 - 1);
                 break;
             }
             i = (i + 1) & mask;
         }
     }
-    Ok(())
+    Ok(keys)
+}
+
+/// Asks the processor to bring `v[i]` (if `i` is in bounds) into the cache, where it can.
+#[inline(always)]
+fn prefetch<T>(v: &[T], i: usize) {
+    #[cfg(all(target_arch = "x86_64", not(miri)))]
+    if let Some(p) = v.get(i) {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE, which `_mm_prefetch` needs, is part of every x86_64 processor; a prefetch
+        // only hints the cache (it reads nothing into the program and cannot fault), here of a
+        // valid reference.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(p).cast::<i8>()) };
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
+    let _ = (v, i);
 }
 
 /// A multiplicative hash of a vertex's bit pattern: a table of `2^(64 - shift)` slots takes its
@@ -576,21 +621,27 @@ fn hash(key: &[u64; 3]) -> u64 {
     h.wrapping_mul(K)
 }
 
-fn placeholder() -> Node {
-    let axes = Mat3::identity();
-    Node::new(
-        &Ssv {
-            axes,
-            origin: Vec3::zeros(),
-            lengths: [0.0; 2],
-            radius: 0.0,
-        },
-        &Obb {
-            axes,
-            center: Vec3::zeros(),
-            half: Vec3::zeros(),
-        },
-    )
+/// `len` nodes of zero bits (a valid node: every field is a float or an integer), or
+/// `Err(ModelOutOfMemory)`. The recursion writes every node once, so the array is asked of the
+/// allocator already zeroed (`calloc`): fresh pages, which the system maps in zeroed as the
+/// recursion first writes them (on whichever thread builds that subtree), rather than a pass on
+/// this thread writing all of it (160 MB at 1M triangles) before the recursion writes it again.
+fn zeroed_nodes(len: usize) -> Result<Vec<Node>, Error> {
+    let oom = |_| Error::ModelOutOfMemory;
+    let layout = std::alloc::Layout::array::<Node>(len).map_err(oom)?;
+    if layout.size() == 0 {
+        return Ok(Vec::new());
+    }
+    // SAFETY: the layout's size is not zero (`alloc_zeroed` requires it).
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<Node>();
+    if ptr.is_null() {
+        return Err(Error::ModelOutOfMemory);
+    }
+    // SAFETY: `ptr` was allocated by the global allocator with the layout of `len` nodes (the
+    // alignment of `Node`, the size of a capacity of `len`), as `Vec` allocates; its `len`
+    // nodes are initialized: all their bits are zero, and a `Node` is only floats and integers,
+    // for which zero bits are a valid value.
+    Ok(unsafe { Vec::from_raw_parts(ptr, len, len) })
 }
 
 /// Partitions the triangles `recs` (at least two; their split `keys` alongside) and returns how
@@ -1081,6 +1132,18 @@ mod tests {
         let mut next = 0;
         walk(&b, b.root(), &mut next);
         assert_eq!(next, b.num_inner());
+    }
+
+    #[test]
+    fn zeroed_nodes_are_zero() {
+        assert!(zeroed_nodes(0).unwrap().is_empty());
+        let nodes = zeroed_nodes(5).unwrap();
+        assert_eq!(nodes.len(), 5);
+        for n in &nodes {
+            assert_eq!(n.children, [NodeRef::inner(0); 2]);
+            assert_eq!(n.ssv_size().to_bits(), 0);
+            assert_eq!(n.obb_half, Vec3::zeros());
+        }
     }
 
     #[test]
