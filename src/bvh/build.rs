@@ -20,7 +20,7 @@
 //! (`build_threads.rs`), into the same array: the hierarchy is the same, bit for bit, whatever the
 //! thread count.
 
-use super::build_threads::{GRAIN, Pool};
+use super::build_threads::{GRAIN, Pool, run_tasks};
 use super::principal_axes::{axes_of, weighted_covariance};
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
@@ -133,11 +133,18 @@ impl Bvh {
         // No more threads than subtrees worth one.
         let threads = threads.clamp(1, 1 + n / GRAIN);
         let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3], threads)?;
+        // The records, and (the root's) how many corners each vertex is.
         let mut recs: Vec<Record> = with_room(n)?;
-        recs.extend(in_faces.iter().enumerate().map(|(k, f)| Record {
-            face: *f,
-            added: k as u32,
-        }));
+        let mut counts: Vec<u32> = zeroed(in_verts.len())?;
+        for (k, f) in in_faces.iter().enumerate() {
+            recs.push(Record {
+                face: *f,
+                added: k as u32,
+            });
+            for &v in f {
+                counts[v as usize] += 1;
+            }
+        }
         drop(in_faces);
         let mut given_ids: Vec<i32> = with_room(n)?;
         given_ids.extend(tris.iter().map(|(_, id)| *id));
@@ -150,18 +157,11 @@ impl Bvh {
             volume,
             scale,
         };
-        let mut nodes = zeroed_nodes(n - 1)?;
+        let mut nodes: Vec<Node> = zeroed(n - 1)?;
         if n > 1 {
             // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = with_room(in_verts.len())?;
             all.extend(0..in_verts.len() as u32);
-            let mut counts: Vec<u32> = with_room(in_verts.len())?;
-            counts.resize(in_verts.len(), 0);
-            for r in &recs {
-                for &v in &r.face {
-                    counts[v as usize] += 1;
-                }
-            }
             let root = Subtree {
                 recs: &mut recs,
                 nodes: &mut nodes,
@@ -187,28 +187,26 @@ impl Bvh {
 
         // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
         // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
-        // gives, as the hierarchy's triangles of a subtree are then near each other).
-        let mut ids: Vec<i32> = with_room(n)?;
-        ids.extend(recs.iter().map(|r| given_ids[r.added as usize]));
-        drop(given_ids);
-        let mut added: Vec<u32> = with_room(n)?;
-        added.extend(recs.iter().map(|r| r.added));
-        let mut remap: Vec<u32> = with_room(in_verts.len())?;
-        remap.resize(in_verts.len(), u32::MAX);
+        // gives, as the hierarchy's triangles of a subtree are then near each other). In fresh
+        // zeroed memory, each entry written once.
+        let mut ids: Vec<i32> = zeroed(n)?;
+        let mut added: Vec<u32> = zeroed(n)?;
+        let mut faces: Vec<[u32; 3]> = zeroed(n)?;
         let mut verts: Vec<Vec3> = with_room(in_verts.len())?;
-        let mut faces: Vec<[u32; 3]> = with_room(n)?;
-        for r in &recs {
-            faces.push(r.face.map(|v| {
-                let slot = &mut remap[v as usize];
-                if *slot == u32::MAX {
-                    *slot = verts.len() as u32;
-                    verts.push(in_verts[v as usize]);
-                }
-                *slot
-            }));
-        }
+        let out = LeafOrder {
+            ids: &mut ids,
+            added: &mut added,
+            faces: &mut faces,
+            verts: &mut verts,
+        };
+        let inner = if threads == 1 {
+            out.fill(&recs, &given_ids, &in_verts)?;
+            Bvh::inner_scale(&nodes)
+        } else {
+            out.fill_threads(threads, &recs, &given_ids, &in_verts, &nodes)?
+        };
         drop(recs);
-        let inner = Bvh::inner_scale(&nodes);
+        drop(given_ids);
         // `in_verts` are shared, and `verts` is a permutation of them.
         Ok(Bvh::assemble(
             nodes, verts, faces, ids, added, collision, inner, true,
@@ -266,6 +264,138 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     v.try_reserve_exact(n)
         .map_err(|_| Error::ModelOutOfMemory)?;
     Ok(v)
+}
+
+/// The hierarchy's arrays in leaf order, to fill from the records in leaf order: `ids`, `added`
+/// and `faces` (as long as the records), and `verts` (empty, with room for the input's vertices).
+struct LeafOrder<'a> {
+    ids: &'a mut [i32],
+    added: &'a mut [u32],
+    faces: &'a mut [[u32; 3]],
+    verts: &'a mut Vec<Vec3>,
+}
+
+impl LeafOrder<'_> {
+    /// Fills the arrays from `recs` (in leaf order), the ids given in insertion order, and the
+    /// distinct vertices of the input, in one pass on this thread.
+    fn fill(self, recs: &[Record], given_ids: &[i32], in_verts: &[Vec3]) -> Result<(), Error> {
+        // Each input vertex's number plus one, 0 while not met.
+        let mut remap: Vec<u32> = zeroed(in_verts.len())?;
+        let verts = self.verts;
+        let out = self
+            .ids
+            .iter_mut()
+            .zip(self.added.iter_mut())
+            .zip(self.faces.iter_mut());
+        for (r, ((id, added), face)) in recs.iter().zip(out) {
+            *id = given_ids[r.added as usize];
+            *added = r.added;
+            *face = r.face.map(|v| {
+                let slot = &mut remap[v as usize];
+                if *slot == 0 {
+                    verts.push(in_verts[v as usize]);
+                    *slot = verts.len() as u32;
+                }
+                *slot - 1
+            });
+        }
+        Ok(())
+    }
+
+    /// [`LeafOrder::fill`] on `threads` threads, and [`Bvh::inner_scale`] of `nodes`, the same
+    /// whatever the thread count. The records are cut into runs: each run's ids and insertion
+    /// indices are copied, and its vertices listed in the order they first appear in it; the
+    /// lists, merged in leaf order on this thread, number the vertices in the order they first
+    /// appear in all (a vertex's first appearance is in the first run that lists it, where its
+    /// list has it in order); then each run's faces are renumbered, and a share of the nodes
+    /// scanned for their largest scale.
+    fn fill_threads(
+        self,
+        threads: usize,
+        recs: &[Record],
+        given_ids: &[i32],
+        in_verts: &[Vec3],
+        nodes: &[Node],
+    ) -> Result<f64, Error> {
+        let runs = 4 * threads;
+        let cut = |k: usize, len: usize| k * len / runs;
+        let n = recs.len();
+        let (mut ids, mut added) = (self.ids, self.added);
+        let mut listing = Vec::new();
+        for k in 0..runs {
+            let len = cut(k + 1, n) - cut(k, n);
+            let (i, rest) = std::mem::take(&mut ids).split_at_mut(len);
+            ids = rest;
+            let (a, rest) = std::mem::take(&mut added).split_at_mut(len);
+            added = rest;
+            // Stamps: the run (plus one) that last listed each vertex on this thread.
+            listing.push((&recs[cut(k, n)..cut(k + 1, n)], i, a, k as u32 + 1));
+        }
+        let lists = run_tasks(
+            threads,
+            listing,
+            |stamps: &mut Vec<u32>, (recs, ids, added, tag)| {
+                let mut list: Vec<u32> = with_room(recs.len() / 2 + 16)?;
+                let out = ids.iter_mut().zip(added.iter_mut());
+                for (r, (id, added)) in recs.iter().zip(out) {
+                    *id = given_ids[r.added as usize];
+                    *added = r.added;
+                    for &v in &r.face {
+                        let stamp = &mut stamps[v as usize];
+                        if *stamp != tag {
+                            *stamp = tag;
+                            if list.len() == list.capacity() {
+                                list.try_reserve(list.len())
+                                    .map_err(|_| Error::ModelOutOfMemory)?;
+                            }
+                            list.push(v);
+                        }
+                    }
+                }
+                Ok(list)
+            },
+            || zeroed::<u32>(in_verts.len()),
+        )?;
+        // Each input vertex's number plus one, 0 while not met.
+        let mut remap: Vec<u32> = zeroed(in_verts.len())?;
+        for list in &lists {
+            for &v in list {
+                let slot = &mut remap[v as usize];
+                if *slot == 0 {
+                    self.verts.push(in_verts[v as usize]);
+                    *slot = self.verts.len() as u32;
+                }
+            }
+        }
+        drop(lists);
+        let mut faces = self.faces;
+        let mut renumbering = Vec::new();
+        for k in 0..runs {
+            let len = cut(k + 1, n) - cut(k, n);
+            let (f, rest) = std::mem::take(&mut faces).split_at_mut(len);
+            faces = rest;
+            let m = nodes.len();
+            renumbering.push((
+                &recs[cut(k, n)..cut(k + 1, n)],
+                f,
+                &nodes[cut(k, m)..cut(k + 1, m)],
+            ));
+        }
+        let remap = &remap;
+        let scales = run_tasks(
+            threads,
+            renumbering,
+            |_: &mut (), (recs, faces, nodes)| {
+                for (r, face) in recs.iter().zip(faces.iter_mut()) {
+                    *face = r.face.map(|v| remap[v as usize] - 1);
+                }
+                Ok(Bvh::inner_scale(nodes))
+            },
+            || Ok(()),
+        )?;
+        // The largest of the largest: the same whatever the cut, as `max` is.
+        Ok(scales.into_iter().fold(0.0, f64::max))
+    }
 }
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
@@ -436,8 +566,7 @@ fn share_corners<'a>(
         let v = corner(c);
         [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
     };
-    let mut faces: Vec<[u32; 3]> = with_room(count)?;
-    faces.resize(count, [0; 3]);
+    let mut faces: Vec<[u32; 3]> = zeroed(count)?;
     let face_ids = faces.as_flattened_mut();
     if threads <= 1 {
         // One share: a vertex's number is its pattern's position among the patterns met.
@@ -621,26 +750,41 @@ fn hash(key: &[u64; 3]) -> u64 {
     h.wrapping_mul(K)
 }
 
-/// `len` nodes of zero bits (a valid node: every field is a float or an integer), or
-/// `Err(ModelOutOfMemory)`. The recursion writes every node once, so the array is asked of the
-/// allocator already zeroed (`calloc`): fresh pages, which the system maps in zeroed as the
-/// recursion first writes them (on whichever thread builds that subtree), rather than a pass on
-/// this thread writing all of it (160 MB at 1M triangles) before the recursion writes it again.
-fn zeroed_nodes(len: usize) -> Result<Vec<Node>, Error> {
+/// Types for which zero bits are a valid value: only floats and integers.
+///
+/// # Safety
+/// Only for such types.
+unsafe trait ZeroBits {}
+// SAFETY: a node is floats and integers only (its volumes' and box's coordinates, its children).
+unsafe impl ZeroBits for Node {}
+// SAFETY: integers.
+unsafe impl ZeroBits for u32 {}
+// SAFETY: integers.
+unsafe impl ZeroBits for i32 {}
+// SAFETY: integers.
+unsafe impl ZeroBits for [u32; 3] {}
+
+/// `len` values of zero bits, or `Err(ModelOutOfMemory)`. For arrays the build writes once,
+/// entry by entry, and for counts and marks that start at zero: they are asked of the allocator
+/// already zeroed (`calloc`), so a large one is fresh pages, which the system maps in zeroed as
+/// they are first written (for the node array, on whichever thread builds that subtree) rather
+/// than a pass on this thread writing all of it (the node array: 160 MB at 1M triangles) before
+/// the build writes it again.
+fn zeroed<T: ZeroBits>(len: usize) -> Result<Vec<T>, Error> {
     let oom = |_| Error::ModelOutOfMemory;
-    let layout = std::alloc::Layout::array::<Node>(len).map_err(oom)?;
+    let layout = std::alloc::Layout::array::<T>(len).map_err(oom)?;
     if layout.size() == 0 {
+        // No type of the trait has size zero: `len` is 0.
         return Ok(Vec::new());
     }
     // SAFETY: the layout's size is not zero (`alloc_zeroed` requires it).
-    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<Node>();
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<T>();
     if ptr.is_null() {
         return Err(Error::ModelOutOfMemory);
     }
-    // SAFETY: `ptr` was allocated by the global allocator with the layout of `len` nodes (the
-    // alignment of `Node`, the size of a capacity of `len`), as `Vec` allocates; its `len`
-    // nodes are initialized: all their bits are zero, and a `Node` is only floats and integers,
-    // for which zero bits are a valid value.
+    // SAFETY: `ptr` was allocated by the global allocator with the layout of `len` values of
+    // `T` (the alignment of `T`, the size of a capacity of `len`), as `Vec` allocates; its
+    // `len` values are initialized: all their bits are zero, a valid value of `T` (`ZeroBits`).
     Ok(unsafe { Vec::from_raw_parts(ptr, len, len) })
 }
 
@@ -1136,8 +1280,8 @@ mod tests {
 
     #[test]
     fn zeroed_nodes_are_zero() {
-        assert!(zeroed_nodes(0).unwrap().is_empty());
-        let nodes = zeroed_nodes(5).unwrap();
+        assert!(zeroed::<Node>(0).unwrap().is_empty());
+        let nodes: Vec<Node> = zeroed(5).unwrap();
         assert_eq!(nodes.len(), 5);
         for n in &nodes {
             assert_eq!(n.children, [NodeRef::inner(0); 2]);
