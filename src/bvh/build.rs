@@ -287,7 +287,16 @@ impl LeafOrder<'_> {
             .iter_mut()
             .zip(self.added.iter_mut())
             .zip(self.faces.iter_mut());
-        for (r, ((id, added), face)) in recs.iter().zip(out) {
+        // The reads by insertion index and by vertex jump about: each record's are fetched into
+        // the cache a few records early (as `first_corners` does).
+        const AHEAD: usize = 8;
+        for (k, (r, ((id, added), face))) in recs.iter().zip(out).enumerate() {
+            if let Some(next) = recs.get(k + AHEAD) {
+                prefetch(given_ids, next.added as usize);
+                for &v in &next.face {
+                    prefetch(&remap, v as usize);
+                }
+            }
             *id = given_ids[r.added as usize];
             *added = r.added;
             *face = r.face.map(|v| {
@@ -1287,6 +1296,51 @@ mod tests {
             assert_eq!(n.children, [NodeRef::inner(0); 2]);
             assert_eq!(n.ssv_size().to_bits(), 0);
             assert_eq!(n.obb_half, Vec3::zeros());
+        }
+    }
+
+    #[test]
+    fn leaf_order_runs_match_one_pass() {
+        // Cut into runs on any number of threads, the leaf-order arrays and the nodes' largest
+        // scale are those of the one pass: on records with vertices repeated within and across
+        // runs, and some vertices unused.
+        let mut s = Lcg(9);
+        let in_verts: Vec<Vec3> = (0..40)
+            .map(|_| Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)))
+            .collect();
+        let n = 37;
+        let recs: Vec<Record> = (0..n)
+            .map(|k| Record {
+                face: [0, 1, 2].map(|_| (s.unit() * 30.0) as u32),
+                added: ((k * 11) % n) as u32,
+            })
+            .collect();
+        let given_ids: Vec<i32> = (0..n as i32).map(|i| 1000 - 7 * i).collect();
+        let nodes = Bvh::build(bumpy_sphere(3, 5), VolumeKind::Rss, CollisionVolume::Obb)
+            .unwrap()
+            .nodes;
+        let fill = |threads: usize| {
+            let (mut ids, mut added, mut faces) = (vec![0; n], vec![0; n], vec![[0; 3]; n]);
+            let mut verts = Vec::with_capacity(in_verts.len());
+            let out = LeafOrder {
+                ids: &mut ids,
+                added: &mut added,
+                faces: &mut faces,
+                verts: &mut verts,
+            };
+            let scale = if threads == 0 {
+                out.fill(&recs, &given_ids, &in_verts).unwrap();
+                Bvh::inner_scale(&nodes)
+            } else {
+                out.fill_threads(threads, &recs, &given_ids, &in_verts, &nodes)
+                    .unwrap()
+            };
+            (ids, added, faces, verts, scale)
+        };
+        let one = fill(0);
+        assert!(one.3.len() <= 30 && one.4 > 0.0);
+        for threads in 1..4 {
+            assert_eq!(fill(threads), one, "{threads} threads");
         }
     }
 
