@@ -199,12 +199,7 @@ impl Bvh {
             faces: &mut faces,
             verts: &mut verts,
         };
-        let inner = if threads == 1 {
-            out.fill(&recs, &given_ids, &in_verts)?;
-            Bvh::inner_scale(&nodes)
-        } else {
-            out.fill_threads(threads, &recs, &given_ids, &in_verts, &nodes)?
-        };
+        let inner = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes)?;
         drop(recs);
         drop(given_ids);
         // `in_verts` are shared, and `verts` is a permutation of them.
@@ -276,8 +271,7 @@ struct LeafOrder<'a> {
 }
 
 impl LeafOrder<'_> {
-    /// Fills the arrays from `recs` (in leaf order), the ids given in insertion order, and the
-    /// distinct vertices of the input, in one pass on this thread.
+    /// [`LeafOrder::fill_on`] on one thread, in one pass.
     fn fill(self, recs: &[Record], given_ids: &[i32], in_verts: &[Vec3]) -> Result<(), Error> {
         // Each input vertex's number plus one, 0 while not met.
         let mut remap: Vec<u32> = zeroed(in_verts.len())?;
@@ -311,14 +305,15 @@ impl LeafOrder<'_> {
         Ok(())
     }
 
-    /// [`LeafOrder::fill`] on `threads` threads, and [`Bvh::inner_scale`] of `nodes`, the same
-    /// whatever the thread count. The records are cut into runs: each run's ids and insertion
-    /// indices are copied, and its vertices listed in the order they first appear in it; the
-    /// lists, merged in leaf order on this thread, number the vertices in the order they first
-    /// appear in all (a vertex's first appearance is in the first run that lists it, where its
-    /// list has it in order); then each run's faces are renumbered, and a share of the nodes
-    /// scanned for their largest scale.
-    fn fill_threads(
+    /// Fills the arrays from `recs` (in leaf order), the ids given in insertion order, and the
+    /// distinct vertices of the input, on `threads` threads, and returns [`Bvh::inner_scale`]
+    /// of `nodes`: the same whatever the thread count. On several threads the records are cut
+    /// into runs: each run's ids and insertion indices are copied, and its vertices listed in
+    /// the order they first appear in it; the lists, merged in leaf order on this thread, number
+    /// the vertices in the order they first appear in all (a vertex's first appearance is in the
+    /// first run that lists it, where its list has it in order); then each run's faces are
+    /// renumbered, and a share of the nodes scanned for their largest scale.
+    fn fill_on(
         self,
         threads: usize,
         recs: &[Record],
@@ -326,6 +321,10 @@ impl LeafOrder<'_> {
         in_verts: &[Vec3],
         nodes: &[Node],
     ) -> Result<f64, Error> {
+        if threads == 1 {
+            self.fill(recs, given_ids, in_verts)?;
+            return Ok(Bvh::inner_scale(nodes));
+        }
         let runs = 4 * threads;
         let cut = |k: usize, len: usize| k * len / runs;
         let n = recs.len();
@@ -1320,26 +1319,20 @@ mod tests {
             .unwrap()
             .nodes;
         let fill = |threads: usize| {
-            let (mut ids, mut added, mut faces) = (vec![0; n], vec![0; n], vec![[0; 3]; n]);
-            let mut verts = Vec::with_capacity(in_verts.len());
+            let (mut i, mut a, mut f) = (vec![0; n], vec![0; n], vec![[0; 3]; n]);
+            let mut v = Vec::with_capacity(in_verts.len());
             let out = LeafOrder {
-                ids: &mut ids,
-                added: &mut added,
-                faces: &mut faces,
-                verts: &mut verts,
+                ids: &mut i,
+                added: &mut a,
+                faces: &mut f,
+                verts: &mut v,
             };
-            let scale = if threads == 0 {
-                out.fill(&recs, &given_ids, &in_verts).unwrap();
-                Bvh::inner_scale(&nodes)
-            } else {
-                out.fill_threads(threads, &recs, &given_ids, &in_verts, &nodes)
-                    .unwrap()
-            };
-            (ids, added, faces, verts, scale)
+            let scale = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes);
+            (i, a, f, v, scale.unwrap())
         };
-        let one = fill(0);
+        let one = fill(1);
         assert!(one.3.len() <= 30 && one.4 > 0.0);
-        for threads in 1..4 {
+        for threads in 2..6 {
             assert_eq!(fill(threads), one, "{threads} threads");
         }
     }
