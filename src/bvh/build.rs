@@ -27,8 +27,6 @@ use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
-use std::sync::atomic::AtomicU32;
-use std::sync::atomic::Ordering::Relaxed;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
 /// such as exponentially spaced triangles, where a mean split peels one triangle at a time) the split
@@ -561,10 +559,13 @@ pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>),
 }
 
 /// [`share_vertices`] of the `count` triangles whose corner `c` (`3 t + k`: corner `k` of
-/// triangle `t`) is `corner(c)`, on up to `threads` threads. The corners are split among the
-/// threads by hash (each finds, for the corners whose hash is its share, the first corner with the
-/// same bits); the vertices are then numbered in one pass in the order they first appear, so the
-/// result is the same whatever the thread count.
+/// triangle `t`) is `corner(c)`, on up to `threads` threads, the same whatever their number.
+/// On several, the corners are cut into runs (one a thread), each of which numbers the bit
+/// patterns met in it, in order; the runs' patterns, taken run after run, are then numbered
+/// among all on this thread (a pattern's first corner is in the first run that has it, where it
+/// comes in the order met: the numbers are those of the order of first appearance), which for a
+/// mesh is about one pattern a vertex rather than six corners; then each run's corners are
+/// renumbered on the threads.
 fn share_corners<'a>(
     count: usize,
     corner: impl Fn(usize) -> &'a Vec3 + Sync,
@@ -576,91 +577,89 @@ fn share_corners<'a>(
     };
     let mut faces: Vec<[u32; 3]> = zeroed(count)?;
     let face_ids = faces.as_flattened_mut();
-    if threads <= 1 {
-        // One share: a vertex's number is its pattern's position among the patterns met.
-        let keys = first_corners(face_ids.len(), &bits, 1, 0, |c, _, k| face_ids[c] = k)?;
-        let mut verts: Vec<Vec3> = with_room(keys.len())?;
-        verts.extend(keys.iter().map(|k| {
-            Vec3::new(
-                f64::from_bits(k[0]),
-                f64::from_bits(k[1]),
-                f64::from_bits(k[2]),
-            )
-        }));
-        return Ok((verts, faces));
-    }
-    // Each corner's first corner with the same bits, found by the thread of its hash's share.
-    let mut firsts: Vec<AtomicU32> = with_room(face_ids.len())?;
-    firsts.resize_with(face_ids.len(), || AtomicU32::new(0));
     let corners = face_ids.len();
-    let part = |p: usize| {
-        first_corners(corners, &bits, threads, p, |c, first, _| {
-            firsts[c].store(first as u32, Relaxed);
-        })
-        .map(drop)
-    };
-    let results: Vec<Result<(), Error>> = std::thread::scope(|s| {
-        let handles: Vec<_> = (1..threads)
-            .map(|p| {
-                std::thread::Builder::new()
-                    .spawn_scoped(s, move || part(p))
-                    .map_err(|_| p)
-            })
-            .collect();
-        let mut results = vec![part(0)];
-        for h in handles {
-            // A thread that could not be started: its share is done here.
-            results.push(match h {
-                Ok(h) => h.join().unwrap_or(Err(Error::Internal)),
-                Err(p) => part(p),
-            });
+    let keys = if threads <= 1 {
+        first_corners(corners, corners / 6, &bits, |c, k| face_ids[c] = k)?
+    } else {
+        let lists = run_tasks(
+            threads,
+            runs_of(face_ids, threads),
+            |_: &mut (), (start, ids)| {
+                first_corners(ids.len(), ids.len() / 6, &|c| bits(start + c), |c, k| {
+                    ids[c] = k
+                })
+            },
+            || Ok(()),
+        )?;
+        // Where each run's patterns start among all of them, taken run after run.
+        let mut starts = vec![0];
+        for list in &lists {
+            starts.push(starts[starts.len() - 1] + list.len());
         }
-        results
-    });
-    results.into_iter().collect::<Result<(), Error>>()?;
-    let mut distinct = 0u32;
-    for c in 0..corners {
-        let first = firsts[c].load(Relaxed) as usize;
-        face_ids[c] = if first == c {
-            distinct += 1;
-            distinct - 1
-        } else {
-            face_ids[first]
+        let total = starts[threads];
+        let pattern = |i: usize| {
+            let run = starts.partition_point(|&s| s <= i) - 1;
+            lists[run][i - starts[run]]
         };
-    }
-    let mut verts: Vec<Vec3> = with_room(distinct as usize)?;
-    for (c, &v) in face_ids.iter().enumerate() {
-        // A vertex's first corner is the one that gave it the next index.
-        if v as usize == verts.len() {
-            verts.push(*corner(c));
-        }
-    }
+        let mut numbers: Vec<u32> = zeroed(total)?;
+        let keys = first_corners(total, total, &pattern, |i, k| numbers[i] = k)?;
+        drop(lists);
+        let numbers = &numbers;
+        let starts = &starts;
+        run_tasks(
+            threads,
+            runs_of(face_ids, threads).into_iter().enumerate().collect(),
+            |_: &mut (), (run, (_, ids))| {
+                for id in ids.iter_mut() {
+                    *id = numbers[starts[run] + *id as usize];
+                }
+                Ok(())
+            },
+            || Ok(()),
+        )?;
+        keys
+    };
+    let mut verts: Vec<Vec3> = with_room(keys.len())?;
+    verts.extend(keys.iter().map(|k| {
+        Vec3::new(
+            f64::from_bits(k[0]),
+            f64::from_bits(k[1]),
+            f64::from_bits(k[2]),
+        )
+    }));
     Ok((verts, faces))
 }
 
-/// For each of the `corners` whose hash falls in share `part` of `parts`, in increasing order,
-/// `found(c, first, k)`: `first` the least corner with the same bits (`bits(c)`), `k` the number
-/// of distinct bit patterns of the share met before `first`'s. Returns those bit patterns, in the
-/// order met. Finds repeats with a hash table, kept at most half full: expected O(corners).
+/// `v` cut into `runs` runs of about equal length (their first index, the run).
+fn runs_of<T>(v: &mut [T], runs: usize) -> Vec<(usize, &mut [T])> {
+    let len = v.len();
+    let cut = |k: usize| k * len / runs;
+    let mut rest = v;
+    (0..runs)
+        .map(|k| {
+            let (run, r) = std::mem::take(&mut rest).split_at_mut(cut(k + 1) - cut(k));
+            rest = r;
+            (cut(k), run)
+        })
+        .collect()
+}
+
+/// For each of the `corners`, in increasing order, `found(c, k)`: `k` the number of distinct bit
+/// patterns met before the first corner with the same bits as `c` (`bits(c)`). Returns the
+/// distinct patterns, in the order met. Finds repeats with a hash table, kept at most half full
+/// (sized for `room` patterns at first): expected O(corners).
 fn first_corners(
     corners: usize,
+    room: usize,
     bits: &impl Fn(usize) -> [u64; 3],
-    parts: usize,
-    part: usize,
-    mut found: impl FnMut(usize, usize, u32),
+    mut found: impl FnMut(usize, u32),
 ) -> Result<Vec<[u64; 3]>, Error> {
-    // The distinct bit patterns met, and each one's first corner: repeats are compared against
-    // these rather than the input's corners, a compact array in which the patterns met lately
-    // (a mesh's repeats are mostly of vertices of nearby triangles) are near each other.
+    // The distinct bit patterns met: repeats are compared against these rather than the
+    // input's corners, a compact array in which the patterns met lately (a mesh's repeats are
+    // mostly of vertices of nearby triangles) are near each other.
     let mut keys: Vec<[u64; 3]> = Vec::new();
-    let mut firsts: Vec<u32> = Vec::new();
-    // Slots hold an index into `keys` plus one (0: empty). Sized for a mesh's usual one vertex
-    // per two triangles, doubled whenever it gets half full.
-    let mut shift = 64
-        - (corners / 3 / parts)
-            .max(8)
-            .next_power_of_two()
-            .trailing_zeros();
+    // Slots hold an index into `keys` plus one (0: empty); doubled whenever half full.
+    let mut shift = 64 - (2 * room).max(8).next_power_of_two().trailing_zeros();
     let mut table: Vec<u32> = Vec::new();
     let grow = |table: &mut Vec<u32>, keys: &[[u64; 3]], shift: u32| -> Result<(), Error> {
         let size = 1usize << (64 - shift);
@@ -699,10 +698,6 @@ fn first_corners(
         let next = key_hash(c + AHEAD);
         prefetch(&table, (next.1 >> shift) as usize);
         ring[c % AHEAD] = next;
-        // The share: from bits of the hash that the slot (its top bits) does not use.
-        if parts > 1 && ((((h >> 16) & 0xffff) as usize * parts) >> 16) != part {
-            continue;
-        }
         let mask = table.len() - 1;
         let mut i = (h >> shift) as usize;
         loop {
@@ -710,11 +705,9 @@ fn first_corners(
             if e == 0 {
                 let k = keys.len() as u32;
                 keys.try_reserve(1).map_err(oom)?;
-                firsts.try_reserve(1).map_err(oom)?;
                 keys.push(key);
-                firsts.push(c as u32);
                 table[i] = k + 1;
-                found(c, c, k);
+                found(c, k);
                 if 2 * keys.len() > table.len() {
                     shift -= 1;
                     grow(&mut table, &keys, shift)?;
@@ -722,7 +715,7 @@ fn first_corners(
                 break;
             }
             if keys[e - 1] == key {
-                found(c, firsts[e - 1] as usize, e as u32 - 1);
+                found(c, e as u32 - 1);
                 break;
             }
             i = (i + 1) & mask;
@@ -1298,15 +1291,20 @@ mod tests {
         }
     }
 
+    /// `count` points uniform in the cube [-0.5, 0.5)^3.
+    fn points(s: &mut Lcg, count: usize) -> Vec<Vec3> {
+        (0..count)
+            .map(|_| Vec3::new(lcg(s), lcg(s), lcg(s)))
+            .collect()
+    }
+
     #[test]
     fn leaf_order_runs_match_one_pass() {
         // Cut into runs on any number of threads, the leaf-order arrays and the nodes' largest
         // scale are those of the one pass: on records with vertices repeated within and across
         // runs, and some vertices unused.
         let mut s = Lcg(9);
-        let in_verts: Vec<Vec3> = (0..40)
-            .map(|_| Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)))
-            .collect();
+        let in_verts = points(&mut s, 40);
         let n = 37;
         let recs: Vec<Record> = (0..n)
             .map(|k| Record {
@@ -1334,6 +1332,41 @@ mod tests {
         assert!(one.3.len() <= 30 && one.4 > 0.0);
         for threads in 2..6 {
             assert_eq!(fill(threads), one, "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn threads_share_vertices_the_same() {
+        // Cut into runs on any number of threads, vertex sharing numbers the vertices as the one
+        // pass does: equal bits once (a negative zero apart), in the order they first appear.
+        let mut s = Lcg(4);
+        let pool = points(&mut s, 25);
+        let mut tris: Vec<Tri> = (0..60)
+            .map(|_| [0, 1, 2].map(|_| pool[(s.unit() * 25.0) as usize]))
+            .collect();
+        tris[7][1] = Vec3::new(-0.0, 0.0, 0.0);
+        tris[9][2] = Vec3::zeros();
+        let one = share_vertices(&tris).unwrap();
+        let bits = |v: &Vec3| [v.x, v.y, v.z].map(f64::to_bits);
+        let mut seen = 0;
+        for (t, f) in one.1.iter().enumerate() {
+            for k in 0..3 {
+                let v = f[k] as usize;
+                assert_eq!(bits(&one.0[v]), bits(&tris[t][k]), "triangle {t}");
+                // Numbered as first met.
+                assert!(v <= seen);
+                seen = seen.max(v + 1);
+            }
+        }
+        assert_eq!(seen, one.0.len());
+        let mut distinct: Vec<_> = one.0.iter().map(bits).collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), one.0.len());
+        for threads in 2..6 {
+            let corners = tris.as_flattened();
+            let many = share_corners(tris.len(), |c| &corners[c], threads).unwrap();
+            assert_eq!(many, one, "{threads} threads");
         }
     }
 
