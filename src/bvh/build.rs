@@ -20,15 +20,13 @@
 //! (`build_threads.rs`), into the same array: the hierarchy is the same, bit for bit, whatever the
 //! thread count.
 
-use super::build_threads::{GRAIN, Pool};
+use super::build_threads::{GRAIN, Pool, run_tasks};
 use super::principal_axes::{axes_of, weighted_scatter};
 use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
-use std::sync::atomic::AtomicU32;
-use std::sync::atomic::Ordering::Relaxed;
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
 /// such as exponentially spaced triangles, where a mean split peels one triangle at a time) the split
@@ -142,11 +140,18 @@ impl Bvh {
         // No more threads than subtrees worth one.
         let threads = threads.clamp(1, 1 + n / GRAIN);
         let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3], threads)?;
+        // The records, and (the root's) how many corners each vertex is.
         let mut recs: Vec<Record> = with_room(n)?;
-        recs.extend(in_faces.iter().enumerate().map(|(k, f)| Record {
-            face: *f,
-            added: k as u32,
-        }));
+        let mut counts: Vec<u32> = zeroed(in_verts.len())?;
+        for (k, f) in in_faces.iter().enumerate() {
+            recs.push(Record {
+                face: *f,
+                added: k as u32,
+            });
+            for &v in f {
+                counts[v as usize] += 1;
+            }
+        }
         drop(in_faces);
         let mut given_ids: Vec<i32> = with_room(n)?;
         given_ids.extend(tris.iter().map(|(_, id)| *id));
@@ -159,19 +164,11 @@ impl Bvh {
             volume,
             scale,
         };
-        let mut nodes: Vec<Node> = with_room(n - 1)?;
-        nodes.resize(n - 1, placeholder());
+        let mut nodes: Vec<Node> = zeroed(n - 1)?;
         if n > 1 {
             // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = with_room(in_verts.len())?;
             all.extend(0..in_verts.len() as u32);
-            let mut counts: Vec<u32> = with_room(in_verts.len())?;
-            counts.resize(in_verts.len(), 0);
-            for r in &recs {
-                for &v in &r.face {
-                    counts[v as usize] += 1;
-                }
-            }
             let root = Subtree {
                 recs: &mut recs,
                 nodes: &mut nodes,
@@ -197,28 +194,21 @@ impl Bvh {
 
         // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
         // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
-        // gives, as the hierarchy's triangles of a subtree are then near each other).
-        let mut ids: Vec<i32> = with_room(n)?;
-        ids.extend(recs.iter().map(|r| given_ids[r.added as usize]));
-        drop(given_ids);
-        let mut added: Vec<u32> = with_room(n)?;
-        added.extend(recs.iter().map(|r| r.added));
-        let mut remap: Vec<u32> = with_room(in_verts.len())?;
-        remap.resize(in_verts.len(), u32::MAX);
+        // gives, as the hierarchy's triangles of a subtree are then near each other). In fresh
+        // zeroed memory, each entry written once.
+        let mut ids: Vec<i32> = zeroed(n)?;
+        let mut added: Vec<u32> = zeroed(n)?;
+        let mut faces: Vec<[u32; 3]> = zeroed(n)?;
         let mut verts: Vec<Vec3> = with_room(in_verts.len())?;
-        let mut faces: Vec<[u32; 3]> = with_room(n)?;
-        for r in &recs {
-            faces.push(r.face.map(|v| {
-                let slot = &mut remap[v as usize];
-                if *slot == u32::MAX {
-                    *slot = verts.len() as u32;
-                    verts.push(in_verts[v as usize]);
-                }
-                *slot
-            }));
-        }
+        let out = LeafOrder {
+            ids: &mut ids,
+            added: &mut added,
+            faces: &mut faces,
+            verts: &mut verts,
+        };
+        let inner = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes)?;
         drop(recs);
-        let inner = Bvh::inner_scale(&nodes);
+        drop(given_ids);
         // `in_verts` are shared, and `verts` is a permutation of them.
         Ok(Bvh::assemble(
             nodes, verts, faces, ids, added, collision, inner, true,
@@ -276,6 +266,151 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     v.try_reserve_exact(n)
         .map_err(|_| Error::ModelOutOfMemory)?;
     Ok(v)
+}
+
+/// The hierarchy's arrays in leaf order, to fill from the records in leaf order: `ids`, `added`
+/// and `faces` (as long as the records), and `verts` (empty, with room for the input's vertices).
+struct LeafOrder<'a> {
+    ids: &'a mut [i32],
+    added: &'a mut [u32],
+    faces: &'a mut [[u32; 3]],
+    verts: &'a mut Vec<Vec3>,
+}
+
+impl LeafOrder<'_> {
+    /// [`LeafOrder::fill_on`] on one thread, in one pass.
+    fn fill(self, recs: &[Record], given_ids: &[i32], in_verts: &[Vec3]) -> Result<(), Error> {
+        // Each input vertex's number plus one, 0 while not met.
+        let mut remap: Vec<u32> = zeroed(in_verts.len())?;
+        let verts = self.verts;
+        let out = self
+            .ids
+            .iter_mut()
+            .zip(self.added.iter_mut())
+            .zip(self.faces.iter_mut());
+        // The reads by insertion index and by vertex jump about: each record's are fetched into
+        // the cache a few records early (as `first_corners` does).
+        const AHEAD: usize = 8;
+        for (k, (r, ((id, added), face))) in recs.iter().zip(out).enumerate() {
+            if let Some(next) = recs.get(k + AHEAD) {
+                prefetch(given_ids, next.added as usize);
+                for &v in &next.face {
+                    prefetch(&remap, v as usize);
+                }
+            }
+            *id = given_ids[r.added as usize];
+            *added = r.added;
+            *face = r.face.map(|v| {
+                let slot = &mut remap[v as usize];
+                if *slot == 0 {
+                    verts.push(in_verts[v as usize]);
+                    *slot = verts.len() as u32;
+                }
+                *slot - 1
+            });
+        }
+        Ok(())
+    }
+
+    /// Fills the arrays from `recs` (in leaf order), the ids given in insertion order, and the
+    /// distinct vertices of the input, on `threads` threads, and returns [`Bvh::inner_scale`]
+    /// of `nodes`: the same whatever the thread count. On several threads the records are cut
+    /// into runs: each run's ids and insertion indices are copied, and its vertices listed in
+    /// the order they first appear in it; the lists, merged in leaf order on this thread, number
+    /// the vertices in the order they first appear in all (a vertex's first appearance is in the
+    /// first run that lists it, where its list has it in order); then each run's faces are
+    /// renumbered, and a share of the nodes scanned for their largest scale.
+    fn fill_on(
+        self,
+        threads: usize,
+        recs: &[Record],
+        given_ids: &[i32],
+        in_verts: &[Vec3],
+        nodes: &[Node],
+    ) -> Result<f64, Error> {
+        if threads == 1 {
+            self.fill(recs, given_ids, in_verts)?;
+            return Ok(Bvh::inner_scale(nodes));
+        }
+        let runs = 4 * threads;
+        let cut = |k: usize, len: usize| k * len / runs;
+        let n = recs.len();
+        let (mut ids, mut added) = (self.ids, self.added);
+        let mut listing = Vec::new();
+        for k in 0..runs {
+            let len = cut(k + 1, n) - cut(k, n);
+            let (i, rest) = std::mem::take(&mut ids).split_at_mut(len);
+            ids = rest;
+            let (a, rest) = std::mem::take(&mut added).split_at_mut(len);
+            added = rest;
+            // Stamps: the run (plus one) that last listed each vertex on this thread.
+            listing.push((&recs[cut(k, n)..cut(k + 1, n)], i, a, k as u32 + 1));
+        }
+        let lists = run_tasks(
+            threads,
+            listing,
+            |stamps: &mut Vec<u32>, (recs, ids, added, tag)| {
+                let mut list: Vec<u32> = with_room(recs.len() / 2 + 16)?;
+                let out = ids.iter_mut().zip(added.iter_mut());
+                for (r, (id, added)) in recs.iter().zip(out) {
+                    *id = given_ids[r.added as usize];
+                    *added = r.added;
+                    for &v in &r.face {
+                        let stamp = &mut stamps[v as usize];
+                        if *stamp != tag {
+                            *stamp = tag;
+                            if list.len() == list.capacity() {
+                                list.try_reserve(list.len())
+                                    .map_err(|_| Error::ModelOutOfMemory)?;
+                            }
+                            list.push(v);
+                        }
+                    }
+                }
+                Ok(list)
+            },
+            || zeroed::<u32>(in_verts.len()),
+        )?;
+        // Each input vertex's number plus one, 0 while not met.
+        let mut remap: Vec<u32> = zeroed(in_verts.len())?;
+        for list in &lists {
+            for &v in list {
+                let slot = &mut remap[v as usize];
+                if *slot == 0 {
+                    self.verts.push(in_verts[v as usize]);
+                    *slot = self.verts.len() as u32;
+                }
+            }
+        }
+        drop(lists);
+        let mut faces = self.faces;
+        let mut renumbering = Vec::new();
+        for k in 0..runs {
+            let len = cut(k + 1, n) - cut(k, n);
+            let (f, rest) = std::mem::take(&mut faces).split_at_mut(len);
+            faces = rest;
+            let m = nodes.len();
+            renumbering.push((
+                &recs[cut(k, n)..cut(k + 1, n)],
+                f,
+                &nodes[cut(k, m)..cut(k + 1, m)],
+            ));
+        }
+        let remap = &remap;
+        let scales = run_tasks(
+            threads,
+            renumbering,
+            |_: &mut (), (recs, faces, nodes)| {
+                for (r, face) in recs.iter().zip(faces.iter_mut()) {
+                    *face = r.face.map(|v| remap[v as usize] - 1);
+                }
+                Ok(Bvh::inner_scale(nodes))
+            },
+            || Ok(()),
+        )?;
+        // The largest of the largest: the same whatever the cut, as `max` is.
+        Ok(scales.into_iter().fold(0.0, f64::max))
+    }
 }
 
 /// Builds the node of triangles `recs` (at least two), whose distinct vertices are
@@ -444,10 +579,13 @@ pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>),
 }
 
 /// [`share_vertices`] of the `count` triangles whose corner `c` (`3 t + k`: corner `k` of
-/// triangle `t`) is `corner(c)`, on up to `threads` threads. The corners are split among the
-/// threads by hash (each finds, for the corners whose hash is its share, the first corner with the
-/// same bits); the vertices are then numbered in one pass in the order they first appear, so the
-/// result is the same whatever the thread count.
+/// triangle `t`) is `corner(c)`, on up to `threads` threads, the same whatever their number.
+/// On several, the corners are cut into runs (one a thread), each of which numbers the bit
+/// patterns met in it, in order; the runs' patterns, taken run after run, are then numbered
+/// among all on this thread (a pattern's first corner is in the first run that has it, where it
+/// comes in the order met: the numbers are those of the order of first appearance), which for a
+/// mesh is about one pattern a vertex rather than six corners; then each run's corners are
+/// renumbered on the threads.
 fn share_corners<'a>(
     count: usize,
     corner: impl Fn(usize) -> &'a Vec3 + Sync,
@@ -457,131 +595,168 @@ fn share_corners<'a>(
         let v = corner(c);
         [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
     };
-    let mut faces: Vec<[u32; 3]> = with_room(count)?;
-    faces.resize(count, [0; 3]);
+    let mut faces: Vec<[u32; 3]> = zeroed(count)?;
     let face_ids = faces.as_flattened_mut();
-    let mut distinct = 0u32;
-    if threads <= 1 {
-        first_corners(face_ids.len(), &bits, 1, 0, |c, first| {
-            face_ids[c] = if first == c {
-                distinct += 1;
-                distinct - 1
-            } else {
-                face_ids[first]
-            };
-        })?;
+    let corners = face_ids.len();
+    let keys = if threads <= 1 {
+        first_corners(corners, corners / 6, &bits, |c, k| face_ids[c] = k)?
     } else {
-        // Each corner's first corner with the same bits, found by the thread of its hash's share.
-        let mut firsts: Vec<AtomicU32> = with_room(face_ids.len())?;
-        firsts.resize_with(face_ids.len(), || AtomicU32::new(0));
-        let corners = face_ids.len();
-        let part = |p: usize| {
-            first_corners(corners, &bits, threads, p, |c, first| {
-                firsts[c].store(first as u32, Relaxed);
-            })
-        };
-        let results: Vec<Result<(), Error>> = std::thread::scope(|s| {
-            let handles: Vec<_> = (1..threads)
-                .map(|p| {
-                    std::thread::Builder::new()
-                        .spawn_scoped(s, move || part(p))
-                        .map_err(|_| p)
+        let lists = run_tasks(
+            threads,
+            runs_of(face_ids, threads),
+            |_: &mut (), (start, ids)| {
+                first_corners(ids.len(), ids.len() / 6, &|c| bits(start + c), |c, k| {
+                    ids[c] = k
                 })
-                .collect();
-            let mut results = vec![part(0)];
-            for h in handles {
-                // A thread that could not be started: its share is done here.
-                results.push(match h {
-                    Ok(h) => h.join().unwrap_or(Err(Error::Internal)),
-                    Err(p) => part(p),
-                });
-            }
-            results
-        });
-        results.into_iter().collect::<Result<(), Error>>()?;
-        for c in 0..corners {
-            let first = firsts[c].load(Relaxed) as usize;
-            face_ids[c] = if first == c {
-                distinct += 1;
-                distinct - 1
-            } else {
-                face_ids[first]
-            };
+            },
+            || Ok(()),
+        )?;
+        // Where each run's patterns start among all of them, taken run after run.
+        let mut starts = vec![0];
+        for list in &lists {
+            starts.push(starts[starts.len() - 1] + list.len());
         }
-    }
-    let mut verts: Vec<Vec3> = with_room(distinct as usize)?;
-    for (c, &v) in face_ids.iter().enumerate() {
-        // A vertex's first corner is the one that gave it the next index.
-        if v as usize == verts.len() {
-            verts.push(*corner(c));
-        }
-    }
+        let total = starts[threads];
+        let pattern = |i: usize| {
+            let run = starts.partition_point(|&s| s <= i) - 1;
+            lists[run][i - starts[run]]
+        };
+        let mut numbers: Vec<u32> = zeroed(total)?;
+        let keys = first_corners(total, total, &pattern, |i, k| numbers[i] = k)?;
+        drop(lists);
+        let numbers = &numbers;
+        let starts = &starts;
+        run_tasks(
+            threads,
+            runs_of(face_ids, threads).into_iter().enumerate().collect(),
+            |_: &mut (), (run, (_, ids))| {
+                for id in ids.iter_mut() {
+                    *id = numbers[starts[run] + *id as usize];
+                }
+                Ok(())
+            },
+            || Ok(()),
+        )?;
+        keys
+    };
+    let mut verts: Vec<Vec3> = with_room(keys.len())?;
+    verts.extend(keys.iter().map(|k| {
+        Vec3::new(
+            f64::from_bits(k[0]),
+            f64::from_bits(k[1]),
+            f64::from_bits(k[2]),
+        )
+    }));
     Ok((verts, faces))
 }
 
-/// For each of the `corners` whose hash falls in share `part` of `parts`, in increasing order,
-/// `found(c, first)`: `first` the least corner with the same bits (`bits(c)`). Finds repeats with
-/// a hash table of corners, kept at most half full: expected O(corners).
+/// `v` cut into `runs` runs of about equal length (their first index, the run).
+fn runs_of<T>(v: &mut [T], runs: usize) -> Vec<(usize, &mut [T])> {
+    let len = v.len();
+    let cut = |k: usize| k * len / runs;
+    let mut rest = v;
+    (0..runs)
+        .map(|k| {
+            let (run, r) = std::mem::take(&mut rest).split_at_mut(cut(k + 1) - cut(k));
+            rest = r;
+            (cut(k), run)
+        })
+        .collect()
+}
+
+/// For each of the `corners`, in increasing order, `found(c, k)`: `k` the number of distinct bit
+/// patterns met before the first corner with the same bits as `c` (`bits(c)`). Returns the
+/// distinct patterns, in the order met. Finds repeats with a hash table, kept at most half full
+/// (sized for `room` patterns at first): expected O(corners).
 fn first_corners(
     corners: usize,
+    room: usize,
     bits: &impl Fn(usize) -> [u64; 3],
-    parts: usize,
-    part: usize,
-    mut found: impl FnMut(usize, usize),
-) -> Result<(), Error> {
-    // Slots hold a corner index plus one (0: empty). Sized for a mesh's usual one vertex per two
-    // triangles, doubled whenever it gets half full.
-    let mut shift = 64
-        - (corners / 3 / parts)
-            .max(8)
-            .next_power_of_two()
-            .trailing_zeros();
+    mut found: impl FnMut(usize, u32),
+) -> Result<Vec<[u64; 3]>, Error> {
+    // The distinct bit patterns met: repeats are compared against these rather than the
+    // input's corners, a compact array in which the patterns met lately (a mesh's repeats are
+    // mostly of vertices of nearby triangles) are near each other.
+    let mut keys: Vec<[u64; 3]> = Vec::new();
+    // Slots hold an index into `keys` plus one (0: empty); doubled whenever half full.
+    let mut shift = 64 - (2 * room).max(8).next_power_of_two().trailing_zeros();
     let mut table: Vec<u32> = Vec::new();
-    let grow = |table: &mut Vec<u32>, shift: u32| -> Result<(), Error> {
+    let grow = |table: &mut Vec<u32>, keys: &[[u64; 3]], shift: u32| -> Result<(), Error> {
         let size = 1usize << (64 - shift);
         let mut new: Vec<u32> = with_room(size)?;
         new.resize(size, 0);
-        for &e in table.iter().filter(|&&e| e != 0) {
-            let mut i = (hash(&bits(e as usize - 1)) >> shift) as usize;
+        for (k, key) in keys.iter().enumerate() {
+            let mut i = (hash(key) >> shift) as usize;
             while new[i] != 0 {
                 i = (i + 1) & (size - 1);
             }
-            new[i] = e;
+            new[i] = k as u32 + 1;
         }
         *table = new;
         Ok(())
     };
-    grow(&mut table, shift)?;
-    let mut entries = 0usize;
-    for c in 0..corners {
-        let key = bits(c);
-        let h = hash(&key);
-        // The share: from bits of the hash that the slot (its top bits) does not use.
-        if parts > 1 && ((((h >> 16) & 0xffff) as usize * parts) >> 16) != part {
-            continue;
+    grow(&mut table, &keys, shift)?;
+    let oom = |_| Error::ModelOutOfMemory;
+    // The table's slots are far apart in memory from one corner to the next: each corner's key
+    // and hash are computed `AHEAD` corners early, and its slot fetched into the cache then, so
+    // that the lookups' cache misses overlap.
+    const AHEAD: usize = 16;
+    let key_hash = |c: usize| {
+        if c < corners {
+            let key = bits(c);
+            (key, hash(&key))
+        } else {
+            ([0; 3], 0)
         }
+    };
+    let mut ring = [([0u64; 3], 0u64); AHEAD];
+    for (c, slot) in ring.iter_mut().enumerate() {
+        *slot = key_hash(c);
+    }
+    for c in 0..corners {
+        let (key, h) = ring[c % AHEAD];
+        let next = key_hash(c + AHEAD);
+        prefetch(&table, (next.1 >> shift) as usize);
+        ring[c % AHEAD] = next;
         let mask = table.len() - 1;
         let mut i = (h >> shift) as usize;
         loop {
             let e = table[i] as usize;
             if e == 0 {
-                table[i] = c as u32 + 1;
-                found(c, c);
-                entries += 1;
-                if 2 * entries > table.len() {
+                let k = keys.len() as u32;
+                keys.try_reserve(1).map_err(oom)?;
+                keys.push(key);
+                table[i] = k + 1;
+                found(c, k);
+                if 2 * keys.len() > table.len() {
                     shift -= 1;
-                    grow(&mut table, shift)?;
+                    grow(&mut table, &keys, shift)?;
                 }
                 break;
             }
-            if bits(e - 1) == key {
-                found(c, e - 1);
+            if keys[e - 1] == key {
+                found(c, e as u32 - 1);
                 break;
             }
             i = (i + 1) & mask;
         }
     }
-    Ok(())
+    Ok(keys)
+}
+
+/// Asks the processor to bring `v[i]` (if `i` is in bounds) into the cache, where it can.
+#[inline(always)]
+fn prefetch<T>(v: &[T], i: usize) {
+    #[cfg(all(target_arch = "x86_64", not(miri)))]
+    if let Some(p) = v.get(i) {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE, which `_mm_prefetch` needs, is part of every x86_64 processor; a prefetch
+        // only hints the cache (it reads nothing into the program and cannot fault), here of a
+        // valid reference.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(p).cast::<i8>()) };
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
+    let _ = (v, i);
 }
 
 /// A multiplicative hash of a vertex's bit pattern: a table of `2^(64 - shift)` slots takes its
@@ -596,21 +771,42 @@ fn hash(key: &[u64; 3]) -> u64 {
     h.wrapping_mul(K)
 }
 
-fn placeholder() -> Node {
-    let axes = Mat3::identity();
-    Node::new(
-        &Ssv {
-            axes,
-            origin: Vec3::zeros(),
-            lengths: [0.0; 2],
-            radius: 0.0,
-        },
-        &Obb {
-            axes,
-            center: Vec3::zeros(),
-            half: Vec3::zeros(),
-        },
-    )
+/// Types for which zero bits are a valid value: only floats and integers.
+///
+/// # Safety
+/// Only for such types.
+unsafe trait ZeroBits {}
+// SAFETY: a node is floats and integers only (its volumes' and box's coordinates, its children).
+unsafe impl ZeroBits for Node {}
+// SAFETY: integers.
+unsafe impl ZeroBits for u32 {}
+// SAFETY: integers.
+unsafe impl ZeroBits for i32 {}
+// SAFETY: integers.
+unsafe impl ZeroBits for [u32; 3] {}
+
+/// `len` values of zero bits, or `Err(ModelOutOfMemory)`. For arrays the build writes once,
+/// entry by entry, and for counts and marks that start at zero: they are asked of the allocator
+/// already zeroed (`calloc`), so a large one is fresh pages, which the system maps in zeroed as
+/// they are first written (for the node array, on whichever thread builds that subtree) rather
+/// than a pass on this thread writing all of it (the node array: 160 MB at 1M triangles) before
+/// the build writes it again.
+fn zeroed<T: ZeroBits>(len: usize) -> Result<Vec<T>, Error> {
+    let oom = |_| Error::ModelOutOfMemory;
+    let layout = std::alloc::Layout::array::<T>(len).map_err(oom)?;
+    if layout.size() == 0 {
+        // No type of the trait has size zero: `len` is 0.
+        return Ok(Vec::new());
+    }
+    // SAFETY: the layout's size is not zero (`alloc_zeroed` requires it).
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<T>();
+    if ptr.is_null() {
+        return Err(Error::ModelOutOfMemory);
+    }
+    // SAFETY: `ptr` was allocated by the global allocator with the layout of `len` values of
+    // `T` (the alignment of `T`, the size of a capacity of `len`), as `Vec` allocates; its
+    // `len` values are initialized: all their bits are zero, a valid value of `T` (`ZeroBits`).
+    Ok(unsafe { Vec::from_raw_parts(ptr, len, len) })
 }
 
 /// Partitions the triangles `recs` (at least two; their split `keys` alongside) and returns how
@@ -1101,6 +1297,97 @@ mod tests {
         let mut next = 0;
         walk(&b, b.root(), &mut next);
         assert_eq!(next, b.num_inner());
+    }
+
+    #[test]
+    fn zeroed_nodes_are_zero() {
+        assert!(zeroed::<Node>(0).unwrap().is_empty());
+        let nodes: Vec<Node> = zeroed(5).unwrap();
+        assert_eq!(nodes.len(), 5);
+        for n in &nodes {
+            assert_eq!(n.children, [NodeRef::inner(0); 2]);
+            assert_eq!(n.ssv_size().to_bits(), 0);
+            assert_eq!(n.obb_half, Vec3::zeros());
+        }
+    }
+
+    /// `count` points uniform in the cube [-0.5, 0.5)^3.
+    fn points(s: &mut Lcg, count: usize) -> Vec<Vec3> {
+        (0..count)
+            .map(|_| Vec3::new(lcg(s), lcg(s), lcg(s)))
+            .collect()
+    }
+
+    #[test]
+    fn leaf_order_runs_match_one_pass() {
+        // Cut into runs on any number of threads, the leaf-order arrays and the nodes' largest
+        // scale are those of the one pass: on records with vertices repeated within and across
+        // runs, and some vertices unused.
+        let mut s = Lcg(9);
+        let in_verts = points(&mut s, 40);
+        let n = 37;
+        let recs: Vec<Record> = (0..n)
+            .map(|k| Record {
+                face: [0, 1, 2].map(|_| (s.unit() * 30.0) as u32),
+                added: ((k * 11) % n) as u32,
+            })
+            .collect();
+        let given_ids: Vec<i32> = (0..n as i32).map(|i| 1000 - 7 * i).collect();
+        let nodes = Bvh::build(bumpy_sphere(3, 5), VolumeKind::Rss, CollisionVolume::Obb)
+            .unwrap()
+            .nodes;
+        let fill = |threads: usize| {
+            let (mut i, mut a, mut f) = (vec![0; n], vec![0; n], vec![[0; 3]; n]);
+            let mut v = Vec::with_capacity(in_verts.len());
+            let out = LeafOrder {
+                ids: &mut i,
+                added: &mut a,
+                faces: &mut f,
+                verts: &mut v,
+            };
+            let scale = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes);
+            (i, a, f, v, scale.unwrap())
+        };
+        let one = fill(1);
+        assert!(one.3.len() <= 30 && one.4 > 0.0);
+        for threads in 2..6 {
+            assert_eq!(fill(threads), one, "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn threads_share_vertices_the_same() {
+        // Cut into runs on any number of threads, vertex sharing numbers the vertices as the one
+        // pass does: equal bits once (a negative zero apart), in the order they first appear.
+        let mut s = Lcg(4);
+        let pool = points(&mut s, 25);
+        let mut tris: Vec<Tri> = (0..60)
+            .map(|_| [0, 1, 2].map(|_| pool[(s.unit() * 25.0) as usize]))
+            .collect();
+        tris[7][1] = Vec3::new(-0.0, 0.0, 0.0);
+        tris[9][2] = Vec3::zeros();
+        let one = share_vertices(&tris).unwrap();
+        let bits = |v: &Vec3| [v.x, v.y, v.z].map(f64::to_bits);
+        let mut seen = 0;
+        for (t, f) in one.1.iter().enumerate() {
+            for k in 0..3 {
+                let v = f[k] as usize;
+                assert_eq!(bits(&one.0[v]), bits(&tris[t][k]), "triangle {t}");
+                // Numbered as first met.
+                assert!(v <= seen);
+                seen = seen.max(v + 1);
+            }
+        }
+        assert_eq!(seen, one.0.len());
+        let mut distinct: Vec<_> = one.0.iter().map(bits).collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), one.0.len());
+        for threads in 2..6 {
+            let corners = tris.as_flattened();
+            let many = share_corners(tris.len(), |c| &corners[c], threads).unwrap();
+            assert_eq!(many, one, "{threads} threads");
+        }
     }
 
     #[test]

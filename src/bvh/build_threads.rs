@@ -131,3 +131,48 @@ impl<T: Send> Pool<T> {
         }
     }
 }
+
+/// `work(state, task)` for every one of `tasks`, on up to `threads` threads (this one and scoped
+/// ones; fewer if the system will not start them), each thread with its own `state` (made by
+/// `state` on its first task), and the results in the order of the tasks, or the first error (of
+/// the first task in order that failed). For the build's passes outside the recursion, split
+/// into tasks of fixed content: what a task computes does not depend on the thread running it.
+pub(super) fn run_tasks<T: Send, R: Send, S>(
+    threads: usize,
+    tasks: Vec<T>,
+    work: impl Fn(&mut S, T) -> Result<R, Error> + Sync,
+    state: impl Fn() -> Result<S, Error> + Sync,
+) -> Result<Vec<R>, Error> {
+    let count = tasks.len();
+    let queue = Mutex::new(tasks.into_iter().enumerate());
+    let done: Mutex<Vec<(usize, Result<R, Error>)>> = Mutex::new(Vec::new());
+    let worker = || {
+        let mut mine: Option<S> = None;
+        loop {
+            // No code panics while holding these locks; should one, the state is still whole.
+            let next = queue.lock().unwrap_or_else(|e| e.into_inner()).next();
+            let Some((k, task)) = next else { return };
+            let result = catch_unwind(AssertUnwindSafe(|| {
+                let s = match &mut mine {
+                    Some(s) => s,
+                    empty => empty.insert(state()?),
+                };
+                work(s, task)
+            }))
+            .unwrap_or(Err(Error::Internal));
+            done.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .push((k, result));
+        }
+    };
+    std::thread::scope(|s| {
+        for _ in 1..threads.min(count) {
+            // A thread that cannot be started leaves its share to the others.
+            let _ = std::thread::Builder::new().spawn_scoped(s, worker);
+        }
+        worker();
+    });
+    let mut done = done.into_inner().unwrap_or_else(|e| e.into_inner());
+    done.sort_unstable_by_key(|&(k, _)| k);
+    done.into_iter().map(|(_, r)| r).collect()
+}
