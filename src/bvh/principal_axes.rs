@@ -58,73 +58,37 @@ pub(super) fn point_covariance(points: &[Vec3]) -> Mat3 {
     Mat3::new(s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5])
 }
 
-/// How far the Jacobi sweeps of [`frame_eigen`] go: until the off-diagonal entries' squares sum
-/// to at most this much of the diagonal's (entries about 1e-3 of the diagonal's).
-const SWEEP_UNTIL: f64 = 1e-6;
-
-/// Eigenvalues and eigenvectors (columns, orthonormal up to about `SWEEP_UNTIL`) of the symmetric
-/// matrix `a` (finite), for a node's frame: cyclic Jacobi sweeps until the off-diagonal entries
-/// are small, then a first-order correction for what is left.
-///
-/// Each Jacobi rotation zeroes one off-diagonal entry; sweeps over the three converge
-/// quadratically once the entries are small, and the rotations' product is orthonormal to
-/// rounding whatever the spectrum. The solver's time is the latency of the rotations' square
-/// roots and divisions, one rotation after the other, so this does few of them:
-/// - A rotation is computed from the difference `d` of the two diagonal entries and twice the
-///   off-diagonal one `h`: `r = sqrt(d^2 + h^2)`, `tan = sign(d) h / (|d| + r)`,
-///   `cos = sqrt((|d| + r) / (2 r))` (the textbook `theta = d / h`, `tan = sign(theta) /
-///   (|theta| + sqrt(theta^2 + 1))`, `cos = 1 / sqrt(tan^2 + 1)`, multiplied through by `|h|`): a
-///   chain of a root, a division and a root instead of two of each and a third division. The
-///   matrix is first scaled by a power of two (exact) to bring its largest entry near 1, so that
-///   `d^2 + h^2` neither overflows nor, for an entry that still matters, underflows.
-/// - The builder starts from the parent's frame, where a child's covariance is nearly diagonal:
-///   one sweep usually leaves entries below `SWEEP_UNTIL` (the old criterion, rounding of the
-///   diagonal, took two sweeps and a check). What is left, `f` between diagonal entries `d_p`
-///   and `d_q`, turns the eigenvectors by about `f / (d_q - d_p)` (first-order perturbation),
-///   applied to all three pairs at once (three independent divisions); an angle error of about
-///   its square remains (at most 1e-4 where the eigenvalues are apart by a tenth of the largest,
-///   far less as a rule: the sweep usually leaves much less than `SWEEP_UNTIL`). Where they are
-///   not (`|f|` above a tenth of the gap) the axes in that plane are about equally good and the
-///   correction is left out.
-///
-/// A frame a little off the exact principal axes costs the volumes nothing in containment (they
-/// are fitted around the points on whatever frame they get) and, at these angles, nothing
-/// measurable in tightness (BENCHMARKS.md, section 32).
-fn frame_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
-    let big = a.amax();
-    // 2^-e with 2^e <= big < 2^(e + 1) (e at most 1022, so that 2^-e is a normal number): the
-    // largest entry then in [1, 4).
-    let e = (((big.to_bits() >> 52) & 0x7ff) as i64 - 1023).min(1022);
-    let down = if big > 0.0 {
-        f64::from_bits(((1023 - e) as u64) << 52)
-    } else {
-        1.0
-    };
-    let mut a = a * down;
+/// Eigenvalues and eigenvectors (columns) of the symmetric matrix `a`, by cyclic Jacobi rotations:
+/// each rotation zeroes one off-diagonal entry; sweeps over the three converge quadratically, and
+/// the rotations' product is orthonormal to rounding whatever the spectrum (repeated eigenvalues
+/// included). A handful of sweeps for a 3x3 matrix; a fraction of a general solver's work.
+pub(super) fn symmetric_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
+    let mut a = *a;
     let mut v = Mat3::identity();
     const PAIRS: [(usize, usize, usize); 3] = [(0, 1, 2), (0, 2, 1), (1, 2, 0)];
     for _sweep in 0..32 {
         let off = a[(0, 1)] * a[(0, 1)] + a[(0, 2)] * a[(0, 2)] + a[(1, 2)] * a[(1, 2)];
         let diag = a[(0, 0)] * a[(0, 0)] + a[(1, 1)] * a[(1, 1)] + a[(2, 2)] * a[(2, 2)];
-        if off <= SWEEP_UNTIL * diag || off == 0.0 {
+        // Off-diagonal entries below rounding of the diagonal: converged.
+        if off <= 1e-28 * diag || off == 0.0 {
             break;
         }
         for (p, q, r) in PAIRS {
             let apq = a[(p, q)];
-            // The rotation by angle phi in the (p, q) plane with cot(2 phi) = d / h zeroes a_pq;
-            // t = tan(phi), the root of t^2 + 2 (d / h) t - 1 = 0 of smaller magnitude (|phi| <=
-            // pi/4, which keeps the rotations small and the iteration convergent).
-            let d = a[(q, q)] - a[(p, p)];
-            let h = 2.0 * apq;
-            let root = (d * d + h * h).sqrt();
-            // An entry this small against the largest (near 1) is far below the rounding of the
-            // diagonal: nothing to rotate (and `h^2` may have underflowed). Zero included.
-            if root <= 1e-150 {
+            if apq == 0.0 {
                 continue;
             }
-            let ad = d.abs() + root;
-            let t = if d < 0.0 { -h } else { h } / ad;
-            let c = (ad / (2.0 * root)).sqrt();
+            // The rotation by angle phi in the (p, q) plane with cot(2 phi) = theta zeroes a_pq;
+            // t = tan(phi), the root of t^2 + 2 theta t - 1 = 0 of smaller magnitude (|phi| <=
+            // pi/4, which keeps the rotations small and the iteration convergent).
+            let theta = (a[(q, q)] - a[(p, p)]) / (2.0 * apq);
+            let t = if theta.abs() > 1e150 {
+                0.5 / theta
+            } else {
+                let t = 1.0 / (theta.abs() + (theta * theta + 1.0).sqrt());
+                if theta < 0.0 { -t } else { t }
+            };
+            let c = 1.0 / (t * t + 1.0).sqrt();
             let s = t * c;
             a[(p, p)] -= t * apq;
             a[(q, q)] += t * apq;
@@ -142,28 +106,12 @@ fn frame_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
             }
         }
     }
-    // First-order correction: the eigenvector near axis q gains f / (d_q - d_p) of axis p.
-    let mut x = Mat3::identity();
-    for (p, q, _) in PAIRS {
-        let f = a[(p, q)];
-        let gap = a[(q, q)] - a[(p, p)];
-        // Strict: a zero gap (with a zero entry) takes no correction rather than 0 / 0.
-        if f.abs() < 0.1 * gap.abs() {
-            x[(p, q)] = f / gap;
-            x[(q, p)] = -f / gap;
-        }
-    }
-    // Back to the given scale (a power of two: exact).
-    (
-        [a[(0, 0)] / down, a[(1, 1)] / down, a[(2, 2)] / down],
-        v * x,
-    )
+    ([a[(0, 0)], a[(1, 1)], a[(2, 2)]], v)
 }
 
 /// Principal axes from a covariance: its eigenvectors as orthonormal right-handed columns in
 /// decreasing order of eigenvalue. Identity when the covariance gives no usable frame (not
-/// finite: coordinates whose squares overflow). The eigenvectors are [`frame_eigen`]'s, taken
-/// to orthonormal columns (Gram-Schmidt). `guess` (orthonormal columns) is where the Jacobi
+/// finite: coordinates whose squares overflow). `guess` (orthonormal columns) is where the Jacobi
 /// rotations start: the covariance is taken into that frame first, so a frame close to the answer
 /// (the parent node's: a child's shape is usually much like its parent's) leaves little to rotate
 /// and the solver converges in fewer sweeps.
@@ -184,7 +132,7 @@ pub(super) fn axes_of(cov: &Mat3, guess: &Mat3) -> Mat3 {
         b[(1, 2)],
         b[(2, 2)],
     );
-    let (values, rotation) = frame_eigen(&b);
+    let (values, rotation) = symmetric_eigen(&b);
     let vectors = guess * rotation;
     let mut idx = [0usize, 1, 2];
     idx.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
@@ -210,93 +158,46 @@ pub(super) fn principal_axes(points: &[Vec3]) -> Mat3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::frame_from;
     use crate::test_rng::Lcg;
 
-    /// The rotation taking a random unit quaternion's frame, orthonormal to rounding.
-    fn random_rotation(s: &mut Lcg) -> Mat3 {
-        let q = nalgebra::Quaternion::new(
-            s.unit() - 0.5,
-            s.unit() - 0.5,
-            s.unit() - 0.5,
-            s.unit() - 0.5,
-        );
-        *nalgebra::UnitQuaternion::from_quaternion(q)
-            .to_rotation_matrix()
-            .matrix()
-    }
-
     #[test]
-    fn frames_are_principal_axes() {
-        // Random, nearly diagonal, repeated and zero spectra, and wide dynamic ranges, each from
-        // the identity, from a guess near the answer (a child's from its parent's) and from a
-        // random one: `frame_eigen`'s eigenvalues agree with a general solver's (to the 1e-3 of
-        // the largest entry left off the diagonal), and `axes_of`
-        // gives orthonormal right-handed axes in decreasing order of eigenvalue, each within
-        // 1e-4 of the general solver's eigenvector where the eigenvalues are apart (by a tenth
-        // of the largest entry; see `frame_eigen`).
+    fn eigen_decomposes_symmetric_matrices() {
+        // Random, nearly diagonal, repeated and zero spectra, and wide dynamic ranges: A V = V L
+        // with V orthonormal, to rounding of A's norm.
         let mut s = Lcg(21);
-        for case in 0..3000 {
+        for case in 0..2000 {
             let r = Mat3::from_fn(|_, _| s.unit() - 0.5);
-            let q = random_rotation(&mut s);
-            let spectrum = Vec3::new(s.unit(), 0.5 * s.unit(), 0.1 * s.unit());
-            let mut a = match case % 6 {
-                0 => r + r.transpose(),
-                1 => Mat3::from_diagonal(&Vec3::new(1.0, 1.0, 2.0)) + (r + r.transpose()) * 1e-9,
-                2 => q * Mat3::from_diagonal(&Vec3::new(3.0, 3.0, 3.0)) * q.transpose(),
-                3 => q * Mat3::from_diagonal(&Vec3::new(1e6, 1.0, 1e-8)) * q.transpose(),
-                4 if case % 12 == 4 => Mat3::zeros(),
-                _ => q * Mat3::from_diagonal(&spectrum) * q.transpose(),
-            };
-            a = (a + a.transpose()) * 0.5;
-            a *= [1.0, 1e-200, 1e200, 1e-3][case % 4];
-            // The largest entry (the norm's squares would underflow at 1e-200).
-            let scale = a.amax().max(f64::MIN_POSITIVE);
-            let (l, _) = frame_eigen(&a);
-            let general = nalgebra::SymmetricEigen::new(a);
-            let mut want: Vec<f64> = general.eigenvalues.iter().copied().collect();
+            let mut a = r + r.transpose();
+            match case % 5 {
+                1 => a = Mat3::from_diagonal(&Vec3::new(1.0, 1.0, 2.0)) + a * 1e-9,
+                2 => a = Mat3::from_diagonal(&Vec3::new(3.0, 3.0, 3.0)),
+                3 => a = r * Mat3::from_diagonal(&Vec3::new(1e6, 1.0, 1e-8)) * r.transpose(),
+                4 if case % 10 == 4 => a = Mat3::zeros(),
+                _ => {}
+            }
+            let (l, v) = symmetric_eigen(&a);
+            let scale = a.norm().max(f64::MIN_POSITIVE);
+            assert!(
+                (v.transpose() * v - Mat3::identity()).norm() < 1e-13,
+                "{case}"
+            );
+            let res = a * v - v * Mat3::from_diagonal(&Vec3::from(l));
+            assert!(
+                res.norm() <= 1e-13 * scale,
+                "{case}: {}",
+                res.norm() / scale
+            );
+            // The eigenvalues agree with a general solver's.
+            let mut want: Vec<f64> = nalgebra::SymmetricEigen::new(a)
+                .eigenvalues
+                .iter()
+                .copied()
+                .collect();
             let mut got = l.to_vec();
             want.sort_by(f64::total_cmp);
             got.sort_by(f64::total_cmp);
             for (g, w) in got.iter().zip(&want) {
-                assert!((g - w).abs() <= 1e-3 * scale, "{case}: {got:?} {want:?}");
-            }
-            let near = q * random_rotation(&mut s).map(|v| v * 1e-1) + q;
-            let near = frame_from(&near.column(0).into(), &near.column(1).into());
-            for guess in [Mat3::identity(), q, near, random_rotation(&mut s)] {
-                let guess = frame_from(&guess.column(0).normalize(), &{
-                    let g0 = guess.column(0).normalize();
-                    let g1: Vec3 = guess.column(1).into();
-                    (g1 - g0 * g0.dot(&g1)).normalize()
-                });
-                let ax = axes_of(&a, &guess);
-                assert!(
-                    (ax.transpose() * ax - Mat3::identity()).norm() < 1e-12,
-                    "{case}"
-                );
-                assert!((ax.determinant() - 1.0).abs() < 1e-12, "{case}");
-                let rq: Vec<f64> = (0..3)
-                    .map(|i| {
-                        let c: Vec3 = ax.column(i).into();
-                        c.dot(&(a * c))
-                    })
-                    .collect();
-                assert!(
-                    rq[0] >= rq[1] - 1e-5 * scale && rq[1] >= rq[2] - 1e-5 * scale,
-                    "{case}: {rq:?}"
-                );
-                let mut order: Vec<usize> = (0..3).collect();
-                order.sort_by(|&i, &j| general.eigenvalues[j].total_cmp(&general.eigenvalues[i]));
-                for (i, &k) in order.iter().enumerate() {
-                    let apart = order.iter().filter(|&&j| j != k).all(|&j| {
-                        (general.eigenvalues[j] - general.eigenvalues[k]).abs() > 0.1 * scale
-                    });
-                    if apart {
-                        let c: Vec3 = ax.column(i).into();
-                        let e: Vec3 = general.eigenvectors.column(k).into();
-                        assert!(c.cross(&e).norm() < 1e-4, "{case}: axis {i}");
-                    }
-                }
+                assert!((g - w).abs() <= 1e-13 * scale, "{case}: {got:?} {want:?}");
             }
         }
     }
