@@ -1712,12 +1712,14 @@ int pqp_tolerance_batch(int *closer,
  *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
  *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
  *         1e150 in magnitude, or a direction coordinate is NaN or infinite;
- *         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes (made on its first ray
- *         cast, kept in the model and counted by pqp_model_memory_usage) could
+ *         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes and its copy of the
+ *         triangles in the tree's leaf order (made on its first ray cast, about 40 + 80 = 120
+ *         bytes per triangle, kept in the model and counted by pqp_model_memory_usage) could
  *         not be allocated; PQP_ERR_INTERNAL on an internal fault. On any error nothing is
  *         written.
  * Thread safety: any number of calls may use the same model at once from different threads
- *                (the first ones on a model may each make its tree of boxes; one is kept).
+ *                (the first ones on a model may each make its tree of boxes and copy of the
+ *                triangles; one of each is kept).
  */
 int pqp_ray_cast(struct pqp_ray_hit *hit,
                  const double *R,

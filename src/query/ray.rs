@@ -20,7 +20,8 @@
 //! triangle (to within a few ulps of the coordinates' magnitude, see [`RayHit`]).
 //!
 //! **Search.** Nearest first through the model's four-wide tree of axis-aligned boxes
-//! (`bvh/ray_tree.rs`, built on the model's first ray cast): each node's four boxes
+//! (`bvh/ray_tree.rs`, built on the model's first ray cast, with a copy of the triangles in its
+//! leaf order, so that a leaf's triangles are one read): each node's four boxes
 //! are cut by the ray at once (slab test with the reciprocal direction, the boxes grown by a
 //! rounding allowance that covers both the test's rounding and the hit point's), and nodes whose
 //! entry lies beyond the best hit so far are pruned.
@@ -102,11 +103,12 @@ struct LocalRay {
     grow: f64,
 }
 
-/// The best hit so far: its parameter (in the scaled direction's units) and its leaf slot.
+/// The best hit so far: its parameter (in the scaled direction's units) and its position in the
+/// ray tree's order.
 #[derive(Clone, Copy)]
 struct Best {
     t: f64,
-    slot: usize,
+    at: u32,
     /// The insertion index of the slot's triangle (ties between equal `t` go to the smallest).
     added: u32,
 }
@@ -120,9 +122,12 @@ impl<'a> RayCaster<'a> {
         if max_t.is_nan() || max_t < 0.0 {
             return Err(Error::InvalidArgument);
         }
+        let tree = bvh.ray_tree()?;
+        // The searches' copy of the triangles, made here on the first cast.
+        tree.leaf_tris(bvh)?;
         Ok(RayCaster {
             bvh,
-            tree: bvh.ray_tree()?,
+            tree,
             pose: *pose,
             max_t: max_t.max(0.0),
         })
@@ -180,13 +185,14 @@ impl<'a> RayCaster<'a> {
             tw.is_finite() && tw <= self.max_t
         })?;
         let t = scaled(best.t, -k);
-        let [a, b, c] = self.bvh.tri(best.slot);
-        let normal = unit(&(r * triangle_normal(&a, &b, &c)));
+        let tri = &self.tree.leaf_tris(self.bvh).ok()?[best.at as usize];
+        let [a, b, c] = &tri.v;
+        let normal = unit(&(r * triangle_normal(a, b, c)));
         Some(RayHit {
             t,
             point: origin + direction * t,
             normal,
-            triangle: self.bvh.ids[best.slot],
+            triangle: tri.id,
         })
     }
 }
@@ -275,8 +281,9 @@ impl LocalRay {
         (t >= -tol).then_some(t.max(0.0))
     }
 
-    /// [`hit`](LocalRay::hit) on the triangle in leaf slot `slot` of `bvh`.
-    #[inline(always)]
+    /// [`hit`](LocalRay::hit) on the triangle in leaf slot `slot` of `bvh` (the tests' brute
+    /// force, which reads the hierarchy rather than the ray tree's copy).
+    #[cfg(test)]
     fn hit_slot(&self, bvh: &Bvh, slot: usize) -> Option<f64> {
         let f = &bvh.faces[slot];
         let v = &bvh.verts;
@@ -285,7 +292,7 @@ impl LocalRay {
 
     /// The nearest hit among the triangles of `tree` (the ray layout of `bvh`) at a parameter
     /// `<= limit` that `accept` takes (ties: the triangle added first), searching nearer nodes
-    /// first.
+    /// first; `None` too if the tree's copy of the triangles cannot be made (out of memory).
     fn search(
         &self,
         bvh: &Bvh,
@@ -308,6 +315,8 @@ impl LocalRay {
         limit: f64,
         accept: impl Fn(f64) -> bool,
     ) -> Option<Best> {
+        // The triangles are read from the tree's copy, in its order.
+        let tris = tree.leaf_tris(bvh).ok()?;
         let mut best: Option<Best> = None;
         // How far a node may start and still be visited: the best hit's parameter (a node starting
         // exactly there may hold a triangle added earlier), grown by a few ulps for the slab test's
@@ -349,6 +358,9 @@ impl LocalRay {
                         for &(k, t) in &crossed[..n - 1] {
                             if counts[k] == 0 {
                                 tree.prefetch(links[k]);
+                            } else {
+                                let (first, n) = (links[k] as usize, counts[k] as usize);
+                                RayTree::prefetch_items(tris.get(first..first + n));
                             }
                             // Checked indexing: the depth bound keeps it in range.
                             stack[len] = MaybeUninit::new((links[k], counts[k], t));
@@ -360,18 +372,18 @@ impl LocalRay {
                     continue;
                 }
             } else {
-                for j in link..link + count {
-                    let slot = tree.slot(j);
-                    let Some(t) = self.hit_slot(bvh, slot) else {
+                for at in link..link + count {
+                    let tri = &tris[at as usize];
+                    let Some(t) = self.hit([&tri.v[0], &tri.v[1], &tri.v[2]]) else {
                         continue;
                     };
-                    let added = bvh.added[slot];
+                    let added = tri.added;
                     let better = match best {
                         None => true,
                         Some(b) => t < b.t || (t == b.t && added < b.added),
                     };
                     if better && accept(t) {
-                        best = Some(Best { t, slot, added });
+                        best = Some(Best { t, at, added });
                         reach = reach_of(t);
                     }
                 }
@@ -531,8 +543,9 @@ fn upper_scaled(x: f64, k: i32) -> f64 {
 /// NaN, infinite or larger than 1e150, `NonFiniteCoordinate` for an origin coordinate that is NaN,
 /// infinite or larger than 1e150 or a direction coordinate that is NaN or infinite,
 /// `InvalidArgument` for a zero direction or a `max_t` that is negative or NaN (`max_t` may be
-/// infinite), `OutOfMemory` if the model's tree of axis-aligned boxes, made on its first ray cast
-/// (and kept in the model), cannot be allocated.
+/// infinite), `OutOfMemory` if the model's tree of axis-aligned boxes and its copy of the
+/// triangles in the tree's leaf order, made on its first ray cast (about 40 + 80 = 120 bytes per
+/// triangle, kept in the model), cannot be allocated.
 ///
 /// ```
 /// use pqp::{Model, Pose, Vec3, ray_cast};
@@ -657,7 +670,7 @@ mod tests {
         let tree = bvh.ray_tree().unwrap();
         let fast = ray
             .search(bvh, tree, max_t, |t| t <= max_t)
-            .map(|b| (b.t, b.slot));
+            .map(|b| (b.t, tree.slot(b.at)));
         let mut brute: Option<(f64, usize, u32)> = None;
         for slot in 0..bvh.num_tris() {
             if let Some(t) = ray.hit_slot(bvh, slot) {
