@@ -279,6 +279,9 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     Ok(v)
 }
 
+/// How many records (or list entries) ahead the leaf-order passes fetch what they will read.
+const AHEAD: usize = 8;
+
 /// The hierarchy's arrays in leaf order, to fill from the records in leaf order: `ids`, `added`
 /// and `faces` (as long as the records), and `verts` (as long as the input's vertices; cut to
 /// those some record has).
@@ -301,8 +304,7 @@ impl LeafOrder<'_> {
             .zip(self.added.iter_mut())
             .zip(self.faces.iter_mut());
         // The reads by insertion index and by vertex jump about: each record's are fetched into
-        // the cache a few records early (as `first_corners` does).
-        const AHEAD: usize = 8;
+        // the cache a few records early (as `first_corners` does), here and in `fill_on`.
         for (k, (r, ((id, added), face))) in recs.iter().zip(out).enumerate() {
             if let Some(next) = recs.get(k + AHEAD) {
                 prefetch(given_ids, next.added as usize);
@@ -373,7 +375,13 @@ impl LeafOrder<'_> {
                 let tag = k as u32 + 1;
                 let mut list: Vec<u32> = with_room(recs.len() / 2 + 16)?;
                 let out = ids.iter_mut().zip(added.iter_mut());
-                for (r, (id, added)) in recs.iter().zip(out) {
+                for (j, (r, (id, added))) in recs.iter().zip(out).enumerate() {
+                    if let Some(next) = recs.get(j + AHEAD) {
+                        prefetch(given_ids, next.added as usize);
+                        for &v in &next.face {
+                            prefetch(stamps, v as usize);
+                        }
+                    }
                     *id = given_ids[r.added as usize];
                     *added = r.added;
                     for &v in &r.face {
@@ -399,7 +407,18 @@ impl LeafOrder<'_> {
             lists.into_iter().enumerate().collect(),
             |_: &mut (), (k, mut list)| {
                 let own = (runs - k) as u32;
-                list.retain(|&v| first[v as usize].load(Ordering::Relaxed) == own);
+                let mut kept = 0;
+                for j in 0..list.len() {
+                    if let Some(&next) = list.get(j + AHEAD) {
+                        prefetch(first, next as usize);
+                    }
+                    let v = list[j];
+                    if first[v as usize].load(Ordering::Relaxed) == own {
+                        list[kept] = v;
+                        kept += 1;
+                    }
+                }
+                list.truncate(kept);
                 Ok(list)
             },
             || Ok(()),
@@ -420,7 +439,13 @@ impl LeafOrder<'_> {
             threads,
             numbering,
             |_: &mut (), (list, verts, from)| {
-                for ((number, &v), out) in (from as u32..).zip(list).zip(verts.iter_mut()) {
+                for (j, ((number, &v), out)) in
+                    (from as u32..).zip(list).zip(verts.iter_mut()).enumerate()
+                {
+                    if let Some(&next) = list.get(j + AHEAD) {
+                        prefetch(in_verts, next as usize);
+                        prefetch(remap, next as usize);
+                    }
                     remap[v as usize].store(number, Ordering::Relaxed);
                     *out = in_verts[v as usize];
                 }
@@ -447,7 +472,12 @@ impl LeafOrder<'_> {
             threads,
             renumbering,
             |_: &mut (), (recs, faces, nodes)| {
-                for (r, face) in recs.iter().zip(faces.iter_mut()) {
+                for (j, (r, face)) in recs.iter().zip(faces.iter_mut()).enumerate() {
+                    if let Some(next) = recs.get(j + AHEAD) {
+                        for &v in &next.face {
+                            prefetch(remap, v as usize);
+                        }
+                    }
                     *face = r.face.map(|v| remap[v as usize].load(Ordering::Relaxed));
                 }
                 Ok(Bvh::inner_scale(nodes))
@@ -685,9 +715,21 @@ fn share_corners<'a>(
         threads,
         runs_of(&mut numbers[starts[1]..], threads),
         |_: &mut (), (offset, out)| {
-            for (i, slot) in (starts[1] + offset..).zip(out.iter_mut()) {
+            let key_of = |i: usize| {
                 let run = starts.partition_point(|&s| s <= i) - 1;
-                let key = &runs[run].keys[i - starts[run]];
+                (run, &runs[run].keys[i - starts[run]])
+            };
+            let end = starts[1] + offset + out.len();
+            for (i, slot) in (starts[1] + offset..).zip(out.iter_mut()) {
+                // The earlier runs' slots for the pattern `AHEAD` on, fetched into the cache.
+                if i + AHEAD < end {
+                    let (run, key) = key_of(i + AHEAD);
+                    let h = hash(key);
+                    for earlier in &runs[..run] {
+                        prefetch(&earlier.table, (h >> earlier.shift) as usize);
+                    }
+                }
+                let (run, key) = key_of(i);
                 let h = hash(key);
                 if let Some((j, k)) = runs[..run]
                     .iter()
