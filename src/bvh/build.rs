@@ -356,6 +356,8 @@ impl LeafOrder<'_> {
         let n = recs.len();
         let (mut ids, mut added) = (self.ids, self.added);
         // For each input vertex, `runs` minus the first run that lists it (0 while none has).
+        // Relaxed atomics throughout: each step's tasks end (their threads joined) before the
+        // next step's start, which orders every write before every read of the next step.
         let first: Vec<AtomicU32> = zeroed(in_verts.len())?;
         let first = &first;
         let mut listing = Vec::new();
