@@ -1,7 +1,8 @@
 //! Build time of the benchmark spheres (40,000 and 1,000,000 triangles), and a fingerprint of each
 //! built model (FNV-1a of its saved bytes: equal fingerprints, the same hierarchy bit for bit).
 //!
-//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m]`
+//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m] [--threads T]`
+//! (`--threads`: `Model::end_threads(T)`, 0 every core; default 1, `Model::end`)
 
 mod workloads;
 
@@ -16,13 +17,13 @@ fn fingerprint(m: &Model) -> u64 {
     })
 }
 
-fn build(tris: &[Tri]) -> Model {
+fn build(tris: &[Tri], threads: usize) -> Model {
     let mut m = Model::new();
     m.begin(tris.len()).unwrap();
     for &(a, b, c, id) in tris {
         m.add_triangle(a, b, c, id).unwrap();
     }
-    m.end().unwrap();
+    m.end_threads(threads).unwrap();
     m
 }
 
@@ -35,6 +36,7 @@ fn main() {
     };
     let rounds: usize = arg("--rounds").map_or(5, |r| r.parse().expect("--rounds N"));
     let only = arg("--only");
+    let threads: usize = arg("--threads").map_or(1, |t| t.parse().expect("--threads T"));
     for (name, lat, lon) in [("40k", 101, 200), ("1m", 501, 1000)] {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
@@ -44,12 +46,12 @@ fn main() {
         let mut print = 0;
         for _ in 0..rounds {
             let t = Instant::now();
-            let m = build(&tris);
+            let m = build(&tris, threads);
             times.push(t.elapsed().as_secs_f64() * 1e3);
             print = fingerprint(&m);
         }
         println!(
-            "{name}: {} triangles, build {:.2} ms (median of {rounds}), tree {print:016x}",
+            "{name}: {} triangles, build {:.2} ms (median of {rounds}, {threads} threads), tree {print:016x}",
             tris.len(),
             median(times)
         );

@@ -27,6 +27,7 @@ use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::math::{Mat3, Vec3, frame_from};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
 /// such as exponentially spaced triangles, where a mean split peels one triangle at a time) the split
@@ -153,9 +154,12 @@ impl Bvh {
             }
         }
         drop(in_faces);
+        // The ids in insertion order, for the leaf-order arrays; then the input is dropped. On
+        // several threads, another thread does this while this one builds the root.
         let mut given_ids: Vec<i32> = with_room(n)?;
-        given_ids.extend(tris.iter().map(|(_, id)| *id));
-        drop(tris);
+        let ids_of = |tris: Vec<(Tri, i32)>, given_ids: &mut Vec<i32>| {
+            given_ids.extend(tris.iter().map(|(_, id)| *id));
+        };
         // At least every vertex's `|p|_1` (twice the largest, which is rounded): for the rounding
         // allowances of `fit_volumes`.
         let scale = 2.0 * in_verts.iter().fold(0.0f64, |m, p| m.max(p.abs().sum()));
@@ -165,7 +169,9 @@ impl Bvh {
             scale,
         };
         let mut nodes: Vec<Node> = zeroed(n - 1)?;
-        if n > 1 {
+        if n == 1 {
+            ids_of(tris, &mut given_ids);
+        } else {
             // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = with_room(in_verts.len())?;
             all.extend(0..in_verts.len() as u32);
@@ -180,6 +186,7 @@ impl Bvh {
                 frame: Mat3::identity(),
             };
             if threads == 1 {
+                ids_of(tris, &mut given_ids);
                 let mut scratch = Scratch::new(in_verts.len())?;
                 build_subtree(&input, &mut scratch, root, None)?;
             } else {
@@ -188,6 +195,10 @@ impl Bvh {
                     root,
                     |scratch, sub, pool| build_subtree(&input, scratch, sub, Some(pool)),
                     || Scratch::new(in_verts.len()),
+                    || {
+                        ids_of(tris, &mut given_ids);
+                        Ok(())
+                    },
                 )?;
             }
         }
@@ -199,7 +210,7 @@ impl Bvh {
         let mut ids: Vec<i32> = zeroed(n)?;
         let mut added: Vec<u32> = zeroed(n)?;
         let mut faces: Vec<[u32; 3]> = zeroed(n)?;
-        let mut verts: Vec<Vec3> = with_room(in_verts.len())?;
+        let mut verts: Vec<Vec3> = zeroed(in_verts.len())?;
         let out = LeafOrder {
             ids: &mut ids,
             added: &mut added,
@@ -268,8 +279,12 @@ fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     Ok(v)
 }
 
+/// How many records (or list entries) ahead the leaf-order passes fetch what they will read.
+const AHEAD: usize = 8;
+
 /// The hierarchy's arrays in leaf order, to fill from the records in leaf order: `ids`, `added`
-/// and `faces` (as long as the records), and `verts` (empty, with room for the input's vertices).
+/// and `faces` (as long as the records), and `verts` (as long as the input's vertices; cut to
+/// those some record has).
 struct LeafOrder<'a> {
     ids: &'a mut [i32],
     added: &'a mut [u32],
@@ -282,15 +297,14 @@ impl LeafOrder<'_> {
     fn fill(self, recs: &[Record], given_ids: &[i32], in_verts: &[Vec3]) -> Result<(), Error> {
         // Each input vertex's number plus one, 0 while not met.
         let mut remap: Vec<u32> = zeroed(in_verts.len())?;
-        let verts = self.verts;
+        let (verts, mut met) = (self.verts, 0);
         let out = self
             .ids
             .iter_mut()
             .zip(self.added.iter_mut())
             .zip(self.faces.iter_mut());
         // The reads by insertion index and by vertex jump about: each record's are fetched into
-        // the cache a few records early (as `first_corners` does).
-        const AHEAD: usize = 8;
+        // the cache a few records early (as `first_corners` does), here and in `fill_on`.
         for (k, (r, ((id, added), face))) in recs.iter().zip(out).enumerate() {
             if let Some(next) = recs.get(k + AHEAD) {
                 prefetch(given_ids, next.added as usize);
@@ -303,23 +317,28 @@ impl LeafOrder<'_> {
             *face = r.face.map(|v| {
                 let slot = &mut remap[v as usize];
                 if *slot == 0 {
-                    verts.push(in_verts[v as usize]);
-                    *slot = verts.len() as u32;
+                    verts[met] = in_verts[v as usize];
+                    met += 1;
+                    *slot = met as u32;
                 }
                 *slot - 1
             });
         }
+        verts.truncate(met);
         Ok(())
     }
 
     /// Fills the arrays from `recs` (in leaf order), the ids given in insertion order, and the
     /// distinct vertices of the input, on `threads` threads, and returns [`Bvh::inner_scale`]
     /// of `nodes`: the same whatever the thread count. On several threads the records are cut
-    /// into runs: each run's ids and insertion indices are copied, and its vertices listed in
-    /// the order they first appear in it; the lists, merged in leaf order on this thread, number
-    /// the vertices in the order they first appear in all (a vertex's first appearance is in the
-    /// first run that lists it, where its list has it in order); then each run's faces are
-    /// renumbered, and a share of the nodes scanned for their largest scale.
+    /// into runs, and every step runs on the threads, a task a run: each run's ids and insertion
+    /// indices are copied, and its vertices listed in the order they first appear in it, while
+    /// each vertex keeps the first run that lists it (an atomic maximum of `runs - run`); then
+    /// each run keeps, of its list, the vertices it lists first: in the order they first appear
+    /// in all, the vertices are those of the first run, then those of the second, and so on,
+    /// each run's in its order. So each run numbers its own, from where the earlier runs' end,
+    /// and copies them into place; then each run's faces are renumbered, and a share of the
+    /// nodes scanned for their largest scale.
     fn fill_on(
         self,
         threads: usize,
@@ -336,6 +355,11 @@ impl LeafOrder<'_> {
         let cut = |k: usize, len: usize| k * len / runs;
         let n = recs.len();
         let (mut ids, mut added) = (self.ids, self.added);
+        // For each input vertex, `runs` minus the first run that lists it (0 while none has).
+        // Relaxed atomics throughout: each step's tasks end (their threads joined) before the
+        // next step's start, which orders every write before every read of the next step.
+        let first: Vec<AtomicU32> = zeroed(in_verts.len())?;
+        let first = &first;
         let mut listing = Vec::new();
         for k in 0..runs {
             let len = cut(k + 1, n) - cut(k, n);
@@ -343,16 +367,23 @@ impl LeafOrder<'_> {
             ids = rest;
             let (a, rest) = std::mem::take(&mut added).split_at_mut(len);
             added = rest;
-            // Stamps: the run (plus one) that last listed each vertex on this thread.
-            listing.push((&recs[cut(k, n)..cut(k + 1, n)], i, a, k as u32 + 1));
+            listing.push((&recs[cut(k, n)..cut(k + 1, n)], i, a, k));
         }
         let lists = run_tasks(
             threads,
             listing,
-            |stamps: &mut Vec<u32>, (recs, ids, added, tag)| {
+            |stamps: &mut Vec<u32>, (recs, ids, added, k)| {
+                // Stamps: the run (plus one) that last listed each vertex on this thread.
+                let tag = k as u32 + 1;
                 let mut list: Vec<u32> = with_room(recs.len() / 2 + 16)?;
                 let out = ids.iter_mut().zip(added.iter_mut());
-                for (r, (id, added)) in recs.iter().zip(out) {
+                for (j, (r, (id, added))) in recs.iter().zip(out).enumerate() {
+                    if let Some(next) = recs.get(j + AHEAD) {
+                        prefetch(given_ids, next.added as usize);
+                        for &v in &next.face {
+                            prefetch(stamps, v as usize);
+                        }
+                    }
                     *id = given_ids[r.added as usize];
                     *added = r.added;
                     for &v in &r.face {
@@ -364,6 +395,7 @@ impl LeafOrder<'_> {
                                     .map_err(|_| Error::ModelOutOfMemory)?;
                             }
                             list.push(v);
+                            first[v as usize].fetch_max((runs - k) as u32, Ordering::Relaxed);
                         }
                     }
                 }
@@ -371,18 +403,60 @@ impl LeafOrder<'_> {
             },
             || zeroed::<u32>(in_verts.len()),
         )?;
-        // Each input vertex's number plus one, 0 while not met.
-        let mut remap: Vec<u32> = zeroed(in_verts.len())?;
-        for list in &lists {
-            for &v in list {
-                let slot = &mut remap[v as usize];
-                if *slot == 0 {
-                    self.verts.push(in_verts[v as usize]);
-                    *slot = self.verts.len() as u32;
+        // Each run's own vertices.
+        let lists = run_tasks(
+            threads,
+            lists.into_iter().enumerate().collect(),
+            |_: &mut (), (k, mut list)| {
+                let own = (runs - k) as u32;
+                let mut kept = 0;
+                for j in 0..list.len() {
+                    if let Some(&next) = list.get(j + AHEAD) {
+                        prefetch(first, next as usize);
+                    }
+                    let v = list[j];
+                    if first[v as usize].load(Ordering::Relaxed) == own {
+                        list[kept] = v;
+                        kept += 1;
+                    }
                 }
-            }
+                list.truncate(kept);
+                Ok(list)
+            },
+            || Ok(()),
+        )?;
+        // Each input vertex's number.
+        let remap: Vec<AtomicU32> = zeroed(in_verts.len())?;
+        let remap = &remap;
+        let mut verts = &mut self.verts[..];
+        let mut numbering = Vec::new();
+        let mut from = 0;
+        for list in &lists {
+            let (v, rest) = std::mem::take(&mut verts).split_at_mut(list.len());
+            verts = rest;
+            numbering.push((list, v, from));
+            from += list.len();
         }
+        run_tasks(
+            threads,
+            numbering,
+            |_: &mut (), (list, verts, from)| {
+                for (j, ((number, &v), out)) in
+                    (from as u32..).zip(list).zip(verts.iter_mut()).enumerate()
+                {
+                    if let Some(&next) = list.get(j + AHEAD) {
+                        prefetch(in_verts, next as usize);
+                        prefetch(remap, next as usize);
+                    }
+                    remap[v as usize].store(number, Ordering::Relaxed);
+                    *out = in_verts[v as usize];
+                }
+                Ok(())
+            },
+            || Ok(()),
+        )?;
         drop(lists);
+        self.verts.truncate(from);
         let mut faces = self.faces;
         let mut renumbering = Vec::new();
         for k in 0..runs {
@@ -396,13 +470,17 @@ impl LeafOrder<'_> {
                 &nodes[cut(k, m)..cut(k + 1, m)],
             ));
         }
-        let remap = &remap;
         let scales = run_tasks(
             threads,
             renumbering,
             |_: &mut (), (recs, faces, nodes)| {
-                for (r, face) in recs.iter().zip(faces.iter_mut()) {
-                    *face = r.face.map(|v| remap[v as usize] - 1);
+                for (j, (r, face)) in recs.iter().zip(faces.iter_mut()).enumerate() {
+                    if let Some(next) = recs.get(j + AHEAD) {
+                        for &v in &next.face {
+                            prefetch(remap, v as usize);
+                        }
+                    }
+                    *face = r.face.map(|v| remap[v as usize].load(Ordering::Relaxed));
                 }
                 Ok(Bvh::inner_scale(nodes))
             },
@@ -581,10 +659,13 @@ pub(super) fn share_vertices(tris: &[Tri]) -> Result<(Vec<Vec3>, Vec<[u32; 3]>),
 /// [`share_vertices`] of the `count` triangles whose corner `c` (`3 t + k`: corner `k` of
 /// triangle `t`) is `corner(c)`, on up to `threads` threads, the same whatever their number.
 /// On several, the corners are cut into runs (one a thread), each of which numbers the bit
-/// patterns met in it, in order; the runs' patterns, taken run after run, are then numbered
-/// among all on this thread (a pattern's first corner is in the first run that has it, where it
-/// comes in the order met: the numbers are those of the order of first appearance), which for a
-/// mesh is about one pattern a vertex rather than six corners; then each run's corners are
+/// patterns met in it, in order, with a hash table of them. The runs' patterns, taken run after
+/// run, are then looked up (on the threads) in the tables of the runs before theirs: a pattern
+/// found there is a repeat of the first one found, the others are new. A pass over the patterns
+/// on this thread numbers the new ones in order and gives each repeat the number of the pattern
+/// it repeats (a pattern's first corner is in the first run that has it, where it comes in the
+/// order met: the numbers are those of the order of first appearance); for a mesh that is about
+/// one pattern a vertex, each read once, rather than six corners. Then each run's corners are
 /// renumbered on the threads.
 fn share_corners<'a>(
     count: usize,
@@ -595,58 +676,99 @@ fn share_corners<'a>(
         let v = corner(c);
         [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
     };
-    let mut faces: Vec<[u32; 3]> = zeroed(count)?;
-    let face_ids = faces.as_flattened_mut();
-    let corners = face_ids.len();
-    let keys = if threads <= 1 {
-        first_corners(corners, corners / 6, &bits, |c, k| face_ids[c] = k)?
-    } else {
-        let lists = run_tasks(
-            threads,
-            runs_of(face_ids, threads),
-            |_: &mut (), (start, ids)| {
-                first_corners(ids.len(), ids.len() / 6, &|c| bits(start + c), |c, k| {
-                    ids[c] = k
-                })
-            },
-            || Ok(()),
-        )?;
-        // Where each run's patterns start among all of them, taken run after run.
-        let mut starts = vec![0];
-        for list in &lists {
-            starts.push(starts[starts.len() - 1] + list.len());
-        }
-        let total = starts[threads];
-        let pattern = |i: usize| {
-            let run = starts.partition_point(|&s| s <= i) - 1;
-            lists[run][i - starts[run]]
-        };
-        let mut numbers: Vec<u32> = zeroed(total)?;
-        let keys = first_corners(total, total, &pattern, |i, k| numbers[i] = k)?;
-        drop(lists);
-        let numbers = &numbers;
-        let starts = &starts;
-        run_tasks(
-            threads,
-            runs_of(face_ids, threads).into_iter().enumerate().collect(),
-            |_: &mut (), (run, (_, ids))| {
-                for id in ids.iter_mut() {
-                    *id = numbers[starts[run] + *id as usize];
-                }
-                Ok(())
-            },
-            || Ok(()),
-        )?;
-        keys
-    };
-    let mut verts: Vec<Vec3> = with_room(keys.len())?;
-    verts.extend(keys.iter().map(|k| {
+    let vertex = |k: &[u64; 3]| {
         Vec3::new(
             f64::from_bits(k[0]),
             f64::from_bits(k[1]),
             f64::from_bits(k[2]),
         )
-    }));
+    };
+    let mut faces: Vec<[u32; 3]> = zeroed(count)?;
+    let face_ids = faces.as_flattened_mut();
+    let corners = face_ids.len();
+    if threads <= 1 {
+        let met = first_corners(corners, corners / 6, &bits, |c, k| face_ids[c] = k)?;
+        let mut verts: Vec<Vec3> = with_room(met.keys.len())?;
+        verts.extend(met.keys.iter().map(vertex));
+        return Ok((verts, faces));
+    }
+    let runs = run_tasks(
+        threads,
+        runs_of(face_ids, threads),
+        |_: &mut (), (start, ids)| {
+            first_corners(ids.len(), ids.len() / 6, &|c| bits(start + c), |c, k| {
+                ids[c] = k
+            })
+        },
+        || Ok(()),
+    )?;
+    // Where each run's patterns start among all of them, taken run after run.
+    let mut starts = vec![0];
+    for run in &runs {
+        starts.push(starts[starts.len() - 1] + run.keys.len());
+    }
+    let total = starts[threads];
+    // For each pattern (by its index among all): its own index if no earlier run has it, else
+    // the index of the first earlier run's. The first run's are all new.
+    let mut numbers: Vec<u32> = with_room(total)?;
+    numbers.extend(0..total as u32);
+    let (runs, starts) = (&runs, &starts);
+    run_tasks(
+        threads,
+        runs_of(&mut numbers[starts[1]..], threads),
+        |_: &mut (), (offset, out)| {
+            let key_of = |i: usize| {
+                let run = starts.partition_point(|&s| s <= i) - 1;
+                (run, &runs[run].keys[i - starts[run]])
+            };
+            let end = starts[1] + offset + out.len();
+            for (i, slot) in (starts[1] + offset..).zip(out.iter_mut()) {
+                // The earlier runs' slots for the pattern `AHEAD` on, fetched into the cache.
+                if i + AHEAD < end {
+                    let (run, key) = key_of(i + AHEAD);
+                    let h = hash(key);
+                    for earlier in &runs[..run] {
+                        prefetch(&earlier.table, (h >> earlier.shift) as usize);
+                    }
+                }
+                let (run, key) = key_of(i);
+                let h = hash(key);
+                if let Some((j, k)) = runs[..run]
+                    .iter()
+                    .enumerate()
+                    .find_map(|(j, earlier)| earlier.find(key, h).map(|k| (j, k)))
+                {
+                    *slot = (starts[j] + k as usize) as u32;
+                }
+            }
+            Ok(())
+        },
+        || Ok(()),
+    )?;
+    // Numbered in order: a repeat's pattern comes earlier, and is numbered by then.
+    let mut verts: Vec<Vec3> = with_room(total)?;
+    for i in 0..total {
+        let first = numbers[i] as usize;
+        numbers[i] = if first == i {
+            let run = starts.partition_point(|&s| s <= i) - 1;
+            verts.push(vertex(&runs[run].keys[i - starts[run]]));
+            verts.len() as u32 - 1
+        } else {
+            numbers[first]
+        };
+    }
+    let numbers = &numbers;
+    run_tasks(
+        threads,
+        runs_of(face_ids, threads).into_iter().enumerate().collect(),
+        |_: &mut (), (run, (_, ids))| {
+            for id in ids.iter_mut() {
+                *id = numbers[starts[run] + *id as usize];
+            }
+            Ok(())
+        },
+        || Ok(()),
+    )?;
     Ok((verts, faces))
 }
 
@@ -666,14 +788,14 @@ fn runs_of<T>(v: &mut [T], runs: usize) -> Vec<(usize, &mut [T])> {
 
 /// For each of the `corners`, in increasing order, `found(c, k)`: `k` the number of distinct bit
 /// patterns met before the first corner with the same bits as `c` (`bits(c)`). Returns the
-/// distinct patterns, in the order met. Finds repeats with a hash table, kept at most half full
-/// (sized for `room` patterns at first): expected O(corners).
+/// distinct patterns, in the order met, with the hash table that found repeats among them, kept
+/// at most half full (sized for `room` patterns at first): expected O(corners).
 fn first_corners(
     corners: usize,
     room: usize,
     bits: &impl Fn(usize) -> [u64; 3],
     mut found: impl FnMut(usize, u32),
-) -> Result<Vec<[u64; 3]>, Error> {
+) -> Result<Met, Error> {
     // The distinct bit patterns met: repeats are compared against these rather than the
     // input's corners, a compact array in which the patterns met lately (a mesh's repeats are
     // mostly of vertices of nearby triangles) are near each other.
@@ -741,7 +863,30 @@ fn first_corners(
             i = (i + 1) & mask;
         }
     }
-    Ok(keys)
+    Ok(Met { keys, table, shift })
+}
+
+/// The distinct bit patterns of some corners, in the order met, and a hash table of them: slots
+/// hold an index into `keys` plus one (0: empty), a pattern's first slot is `hash >> shift`.
+struct Met {
+    keys: Vec<[u64; 3]>,
+    table: Vec<u32>,
+    shift: u32,
+}
+
+impl Met {
+    /// The index of `key` (its hash `h`) among the patterns, if met.
+    fn find(&self, key: &[u64; 3], h: u64) -> Option<u32> {
+        let mask = self.table.len() - 1;
+        let mut i = (h >> self.shift) as usize;
+        loop {
+            match self.table[i] as usize {
+                0 => return None,
+                e if self.keys[e - 1] == *key => return Some(e as u32 - 1),
+                _ => i = (i + 1) & mask,
+            }
+        }
+    }
 }
 
 /// Asks the processor to bring `v[i]` (if `i` is in bounds) into the cache, where it can.
@@ -784,6 +929,10 @@ unsafe impl ZeroBits for u32 {}
 unsafe impl ZeroBits for i32 {}
 // SAFETY: integers.
 unsafe impl ZeroBits for [u32; 3] {}
+// SAFETY: an integer (`AtomicU32` has the layout of `u32`).
+unsafe impl ZeroBits for AtomicU32 {}
+// SAFETY: floats.
+unsafe impl ZeroBits for Vec3 {}
 
 /// `len` values of zero bits, or `Err(ModelOutOfMemory)`. For arrays the build writes once,
 /// entry by entry, and for counts and marks that start at zero: they are asked of the allocator
@@ -1338,7 +1487,7 @@ mod tests {
             .nodes;
         let fill = |threads: usize| {
             let (mut i, mut a, mut f) = (vec![0; n], vec![0; n], vec![[0; 3]; n]);
-            let mut v = Vec::with_capacity(in_verts.len());
+            let mut v = vec![Vec3::zeros(); in_verts.len()];
             let out = LeafOrder {
                 ids: &mut i,
                 added: &mut a,

@@ -33,34 +33,59 @@ pub(super) struct Pool<T> {
 impl<T: Send> Pool<T> {
     /// Builds `root` on `threads` threads (this one and `threads - 1` scoped ones; fewer if the
     /// system will not start them): `work` builds a subtree with a thread's scratch (made by
-    /// `scratch` on the thread's first subtree), handing subtrees to the pool as it goes. The first
-    /// error of any thread, once every thread has stopped.
+    /// `scratch`), handing subtrees to the pool as it goes. This thread builds `root`; while it
+    /// does (there is nothing else to build until the root splits), the first other thread runs
+    /// `side` (work of the build that does not wait for the hierarchy), and every other thread
+    /// makes its scratch. `side` runs on this thread afterwards if no thread could be started.
+    /// The first error of any thread (or of `side`), once every thread has stopped.
     pub fn run<S>(
         threads: usize,
         root: T,
         work: impl Fn(&mut S, T, &Pool<T>) -> Result<(), Error> + Sync,
         scratch: impl Fn() -> Result<S, Error> + Sync,
+        side: impl FnOnce() -> Result<(), Error> + Send,
     ) -> Result<(), Error> {
         let pool = Pool {
             state: Mutex::new(State {
-                queue: vec![root],
-                busy: 0,
+                queue: Vec::new(),
+                // The root, which this thread takes.
+                busy: 1,
                 error: None,
             }),
             wake: Condvar::new(),
             threads,
         };
+        let side = Mutex::new(Some(side));
+        let take_side = || side.lock().unwrap_or_else(|e| e.into_inner()).take();
         std::thread::scope(|s| {
             for _ in 1..threads {
                 // A thread that cannot be started leaves its share to the others.
-                let _ =
-                    std::thread::Builder::new().spawn_scoped(s, || pool.worker(&work, &scratch));
+                let _ = std::thread::Builder::new().spawn_scoped(s, || {
+                    if let Some(side) = take_side() {
+                        pool.report(
+                            catch_unwind(AssertUnwindSafe(side)).unwrap_or(Err(Error::Internal)),
+                        );
+                    }
+                    pool.worker(None, &work, &scratch)
+                });
             }
-            pool.worker(&work, &scratch);
+            pool.worker(Some(root), &work, &scratch);
         });
+        if let Some(side) = take_side() {
+            pool.report(side());
+        }
         match pool.lock().error.take() {
             Some(e) => Err(e),
             None => Ok(()),
+        }
+    }
+
+    /// Keeps `result`'s error if it is the first.
+    fn report(&self, result: Result<(), Error>) {
+        if let Err(e) = result {
+            let mut st = self.lock();
+            st.error.get_or_insert(e);
+            self.wake.notify_all();
         }
     }
 
@@ -69,21 +94,41 @@ impl<T: Send> Pool<T> {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// One thread's loop: takes subtrees until none is left and no thread is building one (so no
-    /// more can come), or an error stops the build.
+    /// One thread's loop: builds `first` (a task already counted busy) if any, then takes
+    /// subtrees until none is left and no thread is building one (so no more can come), or an
+    /// error stops the build. A thread without a first task makes its scratch before it waits.
     fn worker<S>(
         &self,
+        first: Option<T>,
         work: &(impl Fn(&mut S, T, &Pool<T>) -> Result<(), Error> + Sync),
         scratch: &(impl Fn() -> Result<S, Error> + Sync),
     ) {
         let mut mine: Option<S> = None;
+        let mut task = first;
+        if task.is_none() {
+            // While the first thread builds the root: the scratch is then ready when a subtree
+            // comes.
+            match catch_unwind(AssertUnwindSafe(scratch)).unwrap_or(Err(Error::Internal)) {
+                Ok(s) => mine = Some(s),
+                Err(e) => self.report(Err(e)),
+            }
+        }
         let mut st = self.lock();
         loop {
             if st.error.is_some() {
+                if task.is_some() {
+                    st.busy -= 1;
+                    self.wake.notify_all();
+                }
                 return;
             }
-            if let Some(task) = st.queue.pop() {
-                st.busy += 1;
+            if task.is_none() {
+                task = st.queue.pop();
+                if task.is_some() {
+                    st.busy += 1;
+                }
+            }
+            if let Some(task) = task.take() {
                 drop(st);
                 // A panic (none is expected) becomes an error rather than a thread that never
                 // reports back, which would leave the others waiting.
