@@ -145,24 +145,26 @@ fn search_pairs(
     mode: ContactMode,
     leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
 ) -> Stats {
-    if b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv {
-        search(pairs, b1, b2, rel, mode, leaf_pair, |b, r| b.ssv(r))
-    } else {
-        search(pairs, b1, b2, rel, mode, leaf_pair, |b, r| b.obb(r))
+    let ssv = b1.collision == CollisionVolume::Ssv && b2.collision == CollisionVolume::Ssv;
+    // The mode as a constant: the all-contacts search compiles without the first-contact order.
+    match (ssv, mode) {
+        (true, ContactMode::All) => search::<_, false>(pairs, b1, b2, rel, leaf_pair, Bvh::ssv),
+        (true, ContactMode::First) => search::<_, true>(pairs, b1, b2, rel, leaf_pair, Bvh::ssv),
+        (false, ContactMode::All) => search::<_, false>(pairs, b1, b2, rel, leaf_pair, Bvh::obb),
+        (false, ContactMode::First) => search::<_, true>(pairs, b1, b2, rel, leaf_pair, Bvh::obb),
     }
 }
 
 /// The search on the overlap volume `volume` picks from each node: depth first, descending the
 /// larger volume; `leaf_pair` tests the triangles (by leaf slot) of overlapping leaf pairs and
-/// gives the pair to report, if any. A first-contact search visits the nearer child first (see
-/// [`near_first`]); an all-contacts search visits every overlapping pair whatever the order and
-/// takes the children as stored.
-fn search<V: OverlapVolume>(
+/// gives the pair to report, if any. `FIRST`: stop at the first pair, visiting the nearer child
+/// first (see [`near_first`]); else report every pair, visiting the children as stored (an
+/// all-contacts search visits every overlapping pair whatever the order).
+fn search<V: OverlapVolume, const FIRST: bool>(
     pairs: &mut Vec<ContactPair>,
     b1: &Bvh,
     b2: &Bvh,
     rel: &RelPose,
-    mode: ContactMode,
     mut leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
@@ -174,16 +176,15 @@ fn search<V: OverlapVolume>(
     let to_1 = |t: Tri| t.map(|p| rel.apply(&p));
     let to_2 = |t: Tri| t.map(|p| rel.apply_inverse(&p));
     // The children of `a` (model 1) or of `b` (model 2), in the order to visit them.
-    let first = mode == ContactMode::First;
     let split1 = |a: NodeRef, b: NodeRef| {
-        if first {
+        if FIRST {
             near_first(b1, a, &rel.apply(&centre(b2, b)))
         } else {
             b1.children(a)
         }
     };
     let split2 = |a: NodeRef, b: NodeRef| {
-        if first {
+        if FIRST {
             near_first(b2, b, &rel.apply_inverse(&centre(b1, a)))
         } else {
             b2.children(b)
@@ -201,7 +202,7 @@ fn search<V: OverlapVolume>(
             let moved = *tris2.get(p.b, || to_1(b2.tri(tb)));
             if let Some(pair) = leaf_pair(p.a.triangle(), tb, &moved) {
                 pairs.push(pair);
-                if first {
+                if FIRST {
                     break;
                 }
             }
@@ -283,7 +284,8 @@ fn centre(b: &Bvh, r: NodeRef) -> Vec3 {
 /// into it: visited first, it finds a contact after fewer tests (BENCHMARKS.md section 39: on the
 /// bunny-torus poses, a median over poses of 35 bound tests per query instead of 126).
 /// The answer stays a pair the all-contacts search reports; which one may change. A search
-/// without a contact visits every overlapping pair whatever the order.
+/// without a contact visits every overlapping pair whatever the order, and pays for the ordering
+/// (about 12% more time on the bunny poses without contact, BENCHMARKS.md section 39).
 #[inline(always)]
 fn near_first(b: &Bvh, r: NodeRef, other: &Vec3) -> [NodeRef; 2] {
     let [c0, c1] = b.children(r);
