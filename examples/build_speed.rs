@@ -1,8 +1,12 @@
 //! Build time of the benchmark spheres (40,000 and 1,000,000 triangles), and a fingerprint of each
 //! built model (FNV-1a of its saved bytes: equal fingerprints, the same hierarchy bit for bit).
 //!
-//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m] [--threads T]`
+//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m] [--threads T] [--cpu]`
 //! (`--threads`: `Model::end_threads(T)`, 0 every core; default 1, `Model::end`)
+//!
+//! `--cpu`: time on the processor (this thread's, from `/proc/thread-self/schedstat`, Linux)
+//! rather than elapsed time, so that a loaded machine's preemptions do not count (one thread only:
+//! with `--threads` above 1 the other threads' time is not counted).
 
 mod workloads;
 
@@ -27,6 +31,13 @@ fn build(tris: &[Tri], threads: usize) -> Model {
     m
 }
 
+/// This thread's time on the processor so far, in ms (Linux), or `None`.
+fn cpu_ms() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-6)
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let arg = |name: &str| {
@@ -37,6 +48,7 @@ fn main() {
     let rounds: usize = arg("--rounds").map_or(5, |r| r.parse().expect("--rounds N"));
     let only = arg("--only");
     let threads: usize = arg("--threads").map_or(1, |t| t.parse().expect("--threads T"));
+    let cpu = args.iter().any(|a| a == "--cpu");
     for (name, lat, lon) in [("40k", 101, 200), ("1m", 501, 1000)] {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
@@ -45,9 +57,12 @@ fn main() {
         let mut times = Vec::new();
         let mut print = 0;
         for _ in 0..rounds {
-            let t = Instant::now();
+            let (t, c) = (Instant::now(), cpu_ms());
             let m = build(&tris, threads);
-            times.push(t.elapsed().as_secs_f64() * 1e3);
+            times.push(match (cpu, c, cpu_ms()) {
+                (true, Some(c0), Some(c1)) => c1 - c0,
+                _ => t.elapsed().as_secs_f64() * 1e3,
+            });
             print = fingerprint(&m);
         }
         println!(

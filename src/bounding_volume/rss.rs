@@ -37,7 +37,8 @@ pub(super) fn fit(
         let q = local(i);
         // As the allowance is not negative, a point within the extents so far cannot move them:
         // only one outside needs its allowance (and its square root).
-        if q.x >= x0 && q.x <= x1 && q.y >= y0 && q.y <= y1 {
+        // (Non-short-circuit `&`: one well-predicted branch rather than four.)
+        if (q.x >= x0) & (q.x <= x1) & (q.y >= y0) & (q.y <= y1) {
             continue;
         }
         let h = allowance(reach(i), q.z - zc);
@@ -60,19 +61,16 @@ pub(super) fn fit(
     // grow the side that costs the least volume to bring it in. Growing never loses a point.
     for i in 0..count {
         let q = local(i);
-        let (dx, grow_hi_x) = if q.x > x1 {
-            (q.x - x1, true)
-        } else {
-            (x0 - q.x, false)
-        };
-        let (dy, grow_hi_y) = if q.y > y1 {
-            (q.y - y1, true)
-        } else {
-            (y0 - q.y, false)
-        };
-        if dx <= 0.0 || dy <= 0.0 {
+        // How far outside each extent (not positive: inside it). As `x0 <= x1`, at most one of
+        // the two differences is positive, so the larger is it when the point is outside.
+        let (above_x, below_x) = (q.x - x1, x0 - q.x);
+        let (above_y, below_y) = (q.y - y1, y0 - q.y);
+        let dx = if above_x > below_x { above_x } else { below_x };
+        let dy = if above_y > below_y { above_y } else { below_y };
+        if (dx <= 0.0) | (dy <= 0.0) {
             continue;
         }
+        let (grow_hi_x, grow_hi_y) = (q.x > x1, q.y > y1);
         let h = allowance(reach(i), q.z - zc);
         if dx * dx + dy * dy <= h * h {
             continue;

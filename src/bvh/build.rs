@@ -511,15 +511,21 @@ fn node<'a>(
     let m = recs.len();
     debug_assert!(m >= 2 && nodes.len() == m - 1);
     // The node's points, and their mean weighted by how many corners each is, in one pass.
+    // (`extend` of a zip of slices: room is made once, no check per point.)
     scratch.points.clear();
     let (mut sum, mut total) = (Vec3::zeros(), 0.0f64);
-    for (&v, &w) in scratch.lists[list..].iter().zip(&scratch.counts[list..]) {
-        let p = input.verts[v as usize];
-        scratch.points.push(p);
-        let w = f64::from(w);
-        sum += p * w;
-        total += w;
-    }
+    scratch.points.extend(
+        scratch.lists[list..]
+            .iter()
+            .zip(&scratch.counts[list..])
+            .map(|(&v, &w)| {
+                let p = input.verts[v as usize];
+                let w = f64::from(w);
+                sum += p * w;
+                total += w;
+                p
+            }),
+    );
     // The covariance of the node's corners: of its distinct vertices, each weighted by how many
     // corners it is.
     let a = axes_of(
@@ -566,23 +572,33 @@ fn node<'a>(
         this.children[k] = NodeRef::inner(cbase);
         // The child's distinct vertices, in the order its triangles first give them, with their
         // multiplicities and positions.
+        // Written into room for every corner (the counts zeroed), then cut to the vertices met:
+        // no capacity check per corner, and the only branch is on a vertex being new.
         let start = scratch.lists.len();
         let tag = cbase as u32;
+        let corners = 3 * crecs.len();
+        scratch.lists.reserve(corners);
+        scratch.counts.resize(start + corners, 0);
+        let room = &mut scratch.lists.spare_capacity_mut()[..corners];
+        let counts = &mut scratch.counts[start..];
+        let mut len = 0usize;
         for r in crecs.iter() {
             for &v in &r.face {
                 let slot = &mut scratch.slots[v as usize];
                 if slot.stamp != tag {
                     *slot = Slot {
                         stamp: tag,
-                        pos: (scratch.lists.len() - start) as u32,
+                        pos: len as u32,
                     };
-                    scratch.lists.push(v);
-                    scratch.counts.push(1);
-                } else {
-                    scratch.counts[start + slot.pos as usize] += 1;
+                    room[len].write(v);
+                    len += 1;
                 }
+                counts[slot.pos as usize] += 1;
             }
         }
+        // SAFETY: the first `len` entries of the spare capacity were written just above.
+        unsafe { scratch.lists.set_len(start + len) };
+        scratch.counts.truncate(start + len);
         let sub = Subtree {
             recs: crecs,
             nodes: cnodes,
@@ -1014,7 +1030,8 @@ fn fit_volumes(
     let first = axes.tr_mul(&points[0]);
     let (mut lo, mut hi) = (first, first);
     local.clear();
-    for p in points {
+    // (`extend` of a slice's map: room is made once, no check per point.)
+    local.extend(points.iter().map(|p| {
         let q = axes.tr_mul(p);
         // Plain comparisons rather than `f64::min`: no NaN here to handle.
         for k in 0..3 {
@@ -1025,8 +1042,8 @@ fn fit_volumes(
                 hi[k] = q[k];
             }
         }
-        local.push(q);
-    }
+        q
+    }));
     let local = &local[..];
     let at = |i: usize| local[i];
     let kind = match volume {
