@@ -126,9 +126,9 @@ impl ClosestSearch<'_> {
     /// popped bound): it is the one the queue would give next anyway, so the order is the same.
     ///
     /// It starts from `root` if given, else from the nodes of `seeds` (a cut of the BVTT), whose
-    /// bounds were computed before `motion`: a seed whose bound less the motion of its points (along
-    /// its separating axis when it has one) is still beyond the cutoff is pruned at once, the
-    /// others are tested first.
+    /// bounds were computed before `motion`: a seed whose volumes' gap along its separating axis
+    /// now (or without one, whose bound less the motion of its points) is still beyond the cutoff
+    /// is pruned at once, the others are tested first.
     #[inline(always)]
     pub(super) fn priority(
         &mut self,
@@ -151,14 +151,15 @@ impl ClosestSearch<'_> {
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
                 if let Some(m) = &motion {
-                    // The whole model's motion first (free), then the node's own. The axis that
-                    // showed the old bound still shows the decayed one.
-                    let mut old = seed.bound - m.whole();
-                    if old < cut && seed.bound >= cut {
-                        old = seed.bound - m.of_node(self.b2, b, seed.bound, &axis);
+                    // The old bound less the whole model's motion first (free), then the volumes'
+                    // gap along the node's axis now (a few dot products; it may have grown since),
+                    // or without one, the old bound less the node's own motion.
+                    let mut now = seed.bound - m.whole();
+                    if now < cut {
+                        now = m.renewed(self.b1, self.b2, a, b, seed.bound, &axis, cut);
                     }
-                    if old >= cut {
-                        self.pruned(&NodePair { bound: old, ..seed }, axis);
+                    if now >= cut {
+                        self.pruned(&NodePair { bound: now, ..seed }, axis);
                         continue;
                     }
                 }
