@@ -777,7 +777,7 @@ fn hash(key: &[u64; 3]) -> u64 {
 /// # Safety
 /// Only for such types.
 unsafe trait ZeroBits {}
-// SAFETY: a node is floats and integers only (its volumes' and box's coordinates, its children).
+// SAFETY: a node is floats and integers only (its volume's coordinates and size, its children).
 unsafe impl ZeroBits for Node {}
 // SAFETY: floats (a box's centre and half extents).
 unsafe impl ZeroBits for NodeBox {}
