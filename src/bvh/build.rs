@@ -22,7 +22,7 @@
 
 use super::build_threads::{GRAIN, Pool, run_tasks};
 use super::principal_axes::{axes_of, weighted_scatter};
-use super::{Bvh, CollisionVolume, Node, NodeRef, VolumeKind};
+use super::{Bvh, CollisionVolume, Node, NodeBox, NodeRef, NodeSlots, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
@@ -62,7 +62,7 @@ pub(super) struct Input<'a> {
 /// its triangles' corners each is, and its parent's frame (where the root's eigensolver starts).
 pub(super) struct Subtree<'a> {
     pub recs: &'a mut [Record],
-    pub nodes: &'a mut [Node],
+    pub nodes: NodeSlots<'a>,
     pub base: usize,
     pub first_leaf: usize,
     pub depth: usize,
@@ -169,6 +169,7 @@ impl Bvh {
             scale,
         };
         let mut nodes: Vec<Node> = zeroed(n - 1)?;
+        let mut boxes: Vec<NodeBox> = zeroed(n - 1)?;
         if n == 1 {
             ids_of(tris, &mut given_ids);
         } else {
@@ -177,7 +178,7 @@ impl Bvh {
             all.extend(0..in_verts.len() as u32);
             let root = Subtree {
                 recs: &mut recs,
-                nodes: &mut nodes,
+                nodes: NodeSlots::new(&mut nodes, &mut boxes),
                 base: 0,
                 first_leaf: 0,
                 depth: 0,
@@ -222,7 +223,7 @@ impl Bvh {
         drop(given_ids);
         // `in_verts` are shared, and `verts` is a permutation of them.
         Ok(Bvh::assemble(
-            nodes, verts, faces, ids, added, collision, inner, true,
+            nodes, boxes, verts, faces, ids, added, collision, inner, true,
         ))
     }
 }
@@ -500,7 +501,7 @@ fn node<'a>(
     input: &Input,
     scratch: &mut Scratch,
     recs: &'a mut [Record],
-    nodes: &'a mut [Node],
+    nodes: NodeSlots<'a>,
     base: usize,
     first_leaf: usize,
     depth: usize,
@@ -555,8 +556,8 @@ fn node<'a>(
         x(0) + x(1) + x(2)
     }));
     let mid = split(recs, &mut scratch.keys, depth >= MEAN_SPLIT_MAX_DEPTH);
-    let (this, below) = nodes.split_first_mut().expect("a node for every split");
-    *this = Node::new(&ssv, &obb);
+    let (mut this, below) = nodes.split_first_mut().expect("a node for every split");
+    this.set(&ssv, &obb);
     let (left_recs, right_recs) = recs.split_at_mut(mid);
     let (left_nodes, right_nodes) = below.split_at_mut(mid - 1);
     let children = [
@@ -937,8 +938,10 @@ fn hash(key: &[u64; 3]) -> u64 {
 /// # Safety
 /// Only for such types.
 unsafe trait ZeroBits {}
-// SAFETY: a node is floats and integers only (its volumes' and box's coordinates, its children).
+// SAFETY: a node is floats and integers only (its volume's coordinates and size, its children).
 unsafe impl ZeroBits for Node {}
+// SAFETY: floats (a box's centre and half extents).
+unsafe impl ZeroBits for NodeBox {}
 // SAFETY: integers.
 unsafe impl ZeroBits for u32 {}
 // SAFETY: integers.
@@ -1473,8 +1476,14 @@ mod tests {
         for n in &nodes {
             assert_eq!(n.children, [NodeRef::inner(0); 2]);
             assert_eq!(n.ssv_size().to_bits(), 0);
-            assert_eq!(n.obb_half, Vec3::zeros());
         }
+        let boxes: Vec<NodeBox> = zeroed(5).unwrap();
+        let zero = Obb {
+            axes: Mat3::zeros(),
+            center: Vec3::zeros(),
+            half: Vec3::zeros(),
+        };
+        assert!(boxes.iter().all(|b| *b == NodeBox::new(&zero)));
     }
 
     /// `count` points uniform in the cube [-0.5, 0.5)^3.

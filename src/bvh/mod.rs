@@ -6,7 +6,8 @@
 //! RSS, as the model's [`VolumeKind`] chooses) for the distance and tolerance queries, and for
 //! collision when the model asks for it, and an overlap volume (OBB) for collision, both in model
 //! coordinates (a test composes the relative pose with the axes, so no
-//! per-node frame chain is needed).
+//! per-node frame chain is needed). The boxes, which only collision reads, are kept in an array of
+//! their own at the nodes' indices (see [`Node`]).
 //!
 //! A leaf is one triangle and stores no volume: its volumes are computed on use from the triangle
 //! (the exact rectangle around it, see [`Ssv::triangle`]). Triangles are three indices into a vertex
@@ -140,8 +141,11 @@ impl NodeRef {
     }
 }
 
-/// One inner node of the hierarchy. Laid out in the order written (`repr(C)`): what a distance query
-/// reads comes first, in the same cache lines.
+/// One inner node of the hierarchy, as the distance and tolerance queries read it: its swept
+/// sphere volume, that volume's size and its children. Laid out in the order written (`repr(C)`),
+/// 112 bytes. The node's box, which only collision reads, lies apart in [`Bvh`]'s `boxes` (see
+/// [`NodeBox`]), so that the nodes a distance query walks are not spread over cache lines holding
+/// boxes it never reads.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct Node {
@@ -152,21 +156,18 @@ pub(crate) struct Node {
     ssv_size: f64,
     /// The two children.
     children: [NodeRef; 2],
-    /// The box's centre and half extents (see [`Obb`]).
-    obb_center: Vec3,
-    obb_half: Vec3,
 }
 
+// What the prefetch of a node ([`Bvh::prefetch`]) and the queries' cache use count on.
+const _: () = assert!(size_of::<Node>() == 112 && size_of::<NodeBox>() == 48);
+
 impl Node {
-    /// Stores a node fitted on `axes` (whose third column must be the cross product of the first
-    /// two, as [`Node::frame`] recomputes it).
-    pub fn new(ssv: &Ssv, obb: &Obb) -> Node {
-        debug_assert_eq!(ssv.axes, obb.axes);
+    /// A node with volume `ssv` (whose third axis must be the cross product of the first two, as
+    /// [`Node::frame`] recomputes it), its children not yet set.
+    pub fn new(ssv: &Ssv) -> Node {
         Node {
             ssv: ssv.compact(),
             ssv_size: ssv.size(),
-            obb_center: obb.center,
-            obb_half: obb.half,
             children: [NodeRef::inner(0); 2],
         }
     }
@@ -188,15 +189,107 @@ impl Node {
     pub fn ssv_size(&self) -> f64 {
         self.ssv_size
     }
+}
 
-    /// The box.
-    #[inline(always)]
-    pub fn obb(&self) -> Obb {
-        Obb {
-            axes: self.frame(),
-            center: self.obb_center,
-            half: self.obb_half,
+/// An inner node's box (see [`Obb`]) without its axes, which are the node's frame: its centre and
+/// half extents, at the node's index in [`Bvh`]'s `boxes`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
+pub(crate) struct NodeBox {
+    center: Vec3,
+    half: Vec3,
+}
+
+impl NodeBox {
+    /// The centre and half extents of `obb`.
+    pub fn new(obb: &Obb) -> NodeBox {
+        NodeBox {
+            center: obb.center,
+            half: obb.half,
         }
+    }
+
+    /// The box, on the frame of its node `node`.
+    #[inline(always)]
+    pub fn obb(&self, node: &Node) -> Obb {
+        Obb {
+            axes: node.frame(),
+            center: self.center,
+            half: self.half,
+        }
+    }
+}
+
+/// The slots of a run of inner nodes, each node with its box: what the build fills, a node at a
+/// time (see [`NodeSlots::split_first_mut`]), its subtrees' runs split off for each child.
+pub(crate) struct NodeSlots<'a> {
+    nodes: &'a mut [Node],
+    boxes: &'a mut [NodeBox],
+}
+
+/// One slot of [`NodeSlots`]: a node (read and written through it, as a `&mut Node`) and its box.
+pub(crate) struct NodeSlot<'a> {
+    node: &'a mut Node,
+    obb: &'a mut NodeBox,
+}
+
+impl<'a> NodeSlots<'a> {
+    /// The slots of `nodes` with their boxes (as many).
+    pub fn new(nodes: &'a mut [Node], boxes: &'a mut [NodeBox]) -> NodeSlots<'a> {
+        debug_assert_eq!(nodes.len(), boxes.len());
+        NodeSlots { nodes, boxes }
+    }
+
+    /// Number of slots.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The first slot and the rest, or `None` if there are none.
+    pub fn split_first_mut(self) -> Option<(NodeSlot<'a>, NodeSlots<'a>)> {
+        let (node, nodes) = self.nodes.split_first_mut()?;
+        let (obb, boxes) = self.boxes.split_first_mut()?;
+        Some((NodeSlot { node, obb }, NodeSlots { nodes, boxes }))
+    }
+
+    /// The first `mid` slots and the rest.
+    pub fn split_at_mut(self, mid: usize) -> (NodeSlots<'a>, NodeSlots<'a>) {
+        let (n0, n1) = self.nodes.split_at_mut(mid);
+        let (b0, b1) = self.boxes.split_at_mut(mid);
+        (
+            NodeSlots {
+                nodes: n0,
+                boxes: b0,
+            },
+            NodeSlots {
+                nodes: n1,
+                boxes: b1,
+            },
+        )
+    }
+}
+
+impl NodeSlot<'_> {
+    /// Stores the node fitted on `axes`: volume `ssv` and box `obb` (on the same axes, whose third
+    /// column must be the cross product of the first two, as [`Node::frame`] recomputes it), its
+    /// children not yet set.
+    pub fn set(&mut self, ssv: &Ssv, obb: &Obb) {
+        debug_assert_eq!(ssv.axes, obb.axes);
+        *self.node = Node::new(ssv);
+        *self.obb = NodeBox::new(obb);
+    }
+}
+
+impl std::ops::Deref for NodeSlot<'_> {
+    type Target = Node;
+    fn deref(&self) -> &Node {
+        self.node
+    }
+}
+
+impl std::ops::DerefMut for NodeSlot<'_> {
+    fn deref_mut(&mut self) -> &mut Node {
+        self.node
     }
 }
 
@@ -205,6 +298,8 @@ impl Node {
 pub(crate) struct Bvh {
     /// The inner nodes, the root first; read through [`NodeRef`]s and the accessors below.
     nodes: Vec<Node>,
+    /// Each inner node's box, at the node's index (apart from the nodes: see [`Node`]).
+    boxes: Vec<NodeBox>,
     /// The distinct vertices.
     pub verts: Vec<Vec3>,
     /// Each triangle's vertices, by index into `verts`, in leaf order.
@@ -239,14 +334,16 @@ pub(crate) struct Bvh {
 }
 
 impl Bvh {
-    /// A hierarchy from its arrays, with what is derived from them (`scale`, `tiny`) computed:
-    /// how a build and a load both end. `inner_scale` is [`Bvh::inner_scale`] of `nodes` (a load
+    /// A hierarchy from its arrays (`boxes` as many as `nodes`), with what is derived from them
+    /// (`scale`, `tiny`) computed: how a build and a load both end. `inner_scale` is
+    /// [`Bvh::inner_scale`] of `nodes` (a load
     /// computes it as it reads them). `shared`: `verts` are known to have distinct bit patterns
     /// (a build's, shared by [`build::share_vertices`]), which leaves only negative zeros to
     /// check for [`Bvh::distinct_vertices`]; a load's are checked on first use.
     #[allow(clippy::too_many_arguments)]
     fn assemble(
         nodes: Vec<Node>,
+        boxes: Vec<NodeBox>,
         verts: Vec<Vec3>,
         faces: Vec<[u32; 3]>,
         ids: Vec<i32>,
@@ -262,8 +359,10 @@ impl Bvh {
         } else {
             OnceLock::new()
         };
+        debug_assert_eq!(nodes.len(), boxes.len());
         Bvh {
             nodes,
+            boxes,
             verts,
             faces,
             ids,
@@ -318,6 +417,7 @@ impl Bvh {
     pub fn try_clone(&self) -> Result<Bvh, Error> {
         Ok(Bvh {
             nodes: try_copy(&self.nodes)?,
+            boxes: try_copy(&self.boxes)?,
             verts: try_copy(&self.verts)?,
             faces: try_copy(&self.faces)?,
             ids: try_copy(&self.ids)?,
@@ -335,6 +435,7 @@ impl Bvh {
     /// Bytes held by the hierarchy.
     pub fn memory_usage(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.boxes.capacity() * std::mem::size_of::<NodeBox>()
             + self.verts.capacity() * std::mem::size_of::<Vec3>()
             + self.faces.capacity() * std::mem::size_of::<[u32; 3]>()
             + self.ids.capacity() * std::mem::size_of::<i32>()
@@ -426,6 +527,27 @@ impl Bvh {
         self.nodes[r.index()].ssv_size()
     }
 
+    /// Asks the processor to bring inner node `r` (not a leaf) into the cache: every line of its
+    /// 112 bytes (two or three, by where it starts). A hint; nothing on other architectures.
+    #[inline(always)]
+    pub fn prefetch(&self, r: NodeRef) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+            let p = std::ptr::from_ref(&self.nodes[r.index()]).cast::<i8>();
+            // SAFETY: prefetching has no effect on memory; `p`, `p + 64` and `p + 111` lie in the
+            // node (112 bytes), and SSE, which `_mm_prefetch` needs, is part of every x86_64
+            // processor.
+            unsafe {
+                _mm_prefetch::<_MM_HINT_T0>(p);
+                _mm_prefetch::<_MM_HINT_T0>(p.add(64));
+                _mm_prefetch::<_MM_HINT_T0>(p.add(size_of::<Node>() - 1));
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = r;
+    }
+
     /// Number of inner nodes (one less than the triangles).
     #[cfg(test)]
     pub fn num_inner(&self) -> usize {
@@ -451,7 +573,7 @@ impl Bvh {
     #[inline(always)]
     pub fn obb(&self, r: NodeRef) -> Obb {
         match r.kind() {
-            NodeKind::Inner(i) => self.nodes[i].obb(),
+            NodeKind::Inner(i) => self.boxes[i].obb(&self.nodes[i]),
             NodeKind::Leaf(t) => {
                 let t = self.tri(t);
                 Obb::fit(&Ssv::triangle(&t).axes, &t)

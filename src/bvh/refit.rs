@@ -14,7 +14,7 @@
 //! more pairs as the shape drifts from the one the tree was built on (see BENCHMARKS.md, Refit).
 
 use super::build::share_vertices;
-use super::{Bvh, Node, NodeKind, VolumeKind};
+use super::{Bvh, Node, NodeBox, NodeKind, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
@@ -89,7 +89,7 @@ impl Bvh {
                             pads[nc] = ssv.radius;
                             nc += 1;
                         }
-                        boxes[nb] = child.obb();
+                        boxes[nb] = self.boxes[j].obb(child);
                         nb += 1;
                     }
                 }
@@ -97,9 +97,10 @@ impl Bvh {
             let ssv = Ssv::fit_balls(kind, &frame, &centres[..nc], &pads[..nc]);
             let obb = Obb::enclosing(&frame, &points[..np], &boxes[..nb]);
             let children = node.children;
-            let mut new = Node::new(&ssv, &obb);
+            let mut new = Node::new(&ssv);
             new.children = children;
             self.nodes[i] = new;
+            self.boxes[i] = NodeBox::new(&obb);
         }
         self.scale = Bvh::scale_bound(Bvh::inner_scale(&self.nodes), &self.verts);
         self.tiny = Bvh::has_tiny(&self.verts, &self.faces);

@@ -15,7 +15,7 @@
 //! with wrong volumes and a matching checksum gives a model that is memory-safe and whose queries
 //! end, but whose answers may be wrong.
 
-use super::{Bvh, CollisionVolume, MAX_DEPTH, Node, NodeKind, NodeRef, VolumeKind};
+use super::{Bvh, CollisionVolume, MAX_DEPTH, Node, NodeBox, NodeKind, NodeRef, VolumeKind};
 use crate::bounding_volume::{BoundingVolume, CompactSsv};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::math::Vec3;
@@ -303,8 +303,9 @@ impl Bvh {
         header[32..40].copy_from_slice(&(total as u64).to_le_bytes());
 
         let (nodes, rest) = rest.split_at_mut(self.nodes.len() * NODE);
-        for (n, out) in self.nodes.iter().zip(nodes.chunks_exact_mut(NODE)) {
-            let (s, [u, v], c, h) = (&n.ssv, &n.ssv.axes, &n.obb_center, &n.obb_half);
+        let nodes_boxes = self.nodes.iter().zip(&self.boxes);
+        for ((n, b), out) in nodes_boxes.zip(nodes.chunks_exact_mut(NODE)) {
+            let (s, [u, v], c, h) = (&n.ssv, &n.ssv.axes, &b.center, &b.half);
             let o = &s.origin;
             put_f64s(
                 out,
@@ -393,7 +394,7 @@ impl Bvh {
             s
         };
         let [node_bytes, vert_bytes, face_bytes, id_bytes, added_bytes] = sizes.map(&mut section);
-        let (nodes, children, inner_scale) = read_nodes(node_bytes, volume, &mut sum)?;
+        let (nodes, boxes, children, inner_scale) = read_nodes(node_bytes, volume, &mut sum)?;
         let verts = read_verts(vert_bytes, &mut sum)?;
         let faces = read_faces(face_bytes, v, &mut sum)?;
         let mut ids = with_room(n as usize)?;
@@ -410,6 +411,7 @@ impl Bvh {
         Ok((
             Bvh::assemble(
                 nodes,
+                boxes,
                 verts,
                 faces,
                 ids,
@@ -423,16 +425,17 @@ impl Bvh {
     }
 }
 
-/// What [`read_nodes`] gives: the nodes, their children apart, and the largest scale of their
-/// swept sphere volumes ([`Bvh::inner_scale`]).
-type Nodes = (Vec<Node>, Vec<[NodeRef; 2]>, f64);
+/// What [`read_nodes`] gives: the nodes, their boxes, their children apart, and the largest scale
+/// of their swept sphere volumes ([`Bvh::inner_scale`]).
+type Nodes = (Vec<Node>, Vec<NodeBox>, Vec<[NodeRef; 2]>, f64);
 
 /// The inner nodes, each checked on its own: values finite and within [`MAX_NODE_VALUE`], lengths,
 /// radius and half extents not negative, lengths as the model's volume kind allows, axes
 /// orthonormal. The children, also given apart for [`check_tree`] (a walk over them alone touches
-/// 8 bytes a node where the nodes are 160), are checked there.
+/// 8 bytes a node where the nodes are 112), are checked there.
 fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<Nodes, Error> {
     let mut nodes = with_room(bytes.len() / NODE)?;
+    let mut boxes = with_room(bytes.len() / NODE)?;
     let mut children = with_room(bytes.len() / NODE)?;
     let mut inner_scale = 0.0;
     for_records(bytes, NODE, sum, |b| {
@@ -451,7 +454,7 @@ fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<
             lengths: [f[9], f[10]],
             radius: f[11],
         };
-        let (obb_center, obb_half) = (vec(12), vec(15));
+        let (center, half) = (vec(12), vec(15));
         let [u, v] = ssv.axes;
         let near = |x: f64, want: f64| (x - want).abs() <= FRAME_TOLERANCE;
         let allowed_lengths = match volume {
@@ -465,7 +468,7 @@ fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<
             && ssv.lengths[0] >= 0.0
             && ssv.lengths[1] >= 0.0
             && ssv.radius >= 0.0
-            && obb_half.iter().all(|&h| h >= 0.0)
+            && half.iter().all(|&h| h >= 0.0)
             && allowed_lengths;
         if !valid {
             return Err(Error::InvalidData);
@@ -480,13 +483,12 @@ fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<
             ssv_size: ssv.full().size(),
             ssv,
             children: kids,
-            obb_center,
-            obb_half,
         });
+        boxes.push(NodeBox { center, half });
         children.push(kids);
         Ok(())
     })?;
-    Ok((nodes, children, inner_scale))
+    Ok((nodes, boxes, children, inner_scale))
 }
 
 /// Checks that the inner nodes' `children` make the tree a build makes over `n` triangles (`n - 1`
@@ -700,9 +702,8 @@ mod tests {
                     assert_eq!(x.ssv, y.ssv);
                     assert_eq!(x.ssv_size.to_bits(), y.ssv_size.to_bits());
                     assert_eq!(x.children, y.children);
-                    assert_eq!(x.obb_center, y.obb_center);
-                    assert_eq!(x.obb_half, y.obb_half);
                 }
+                assert_eq!(b.boxes, c.boxes);
                 assert_eq!(b.verts, c.verts);
                 assert_eq!(b.faces, c.faces);
                 assert_eq!(b.ids, c.ids);

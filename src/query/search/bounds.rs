@@ -164,7 +164,7 @@ pub(crate) fn expand(
 /// read: the children of the side the descent rule splits (a hint; nothing on other
 /// architectures, nor for a leaf child, whose volume comes from its triangle). For a node stacked
 /// now and expanded later: on models larger than the caches (the nested shells' hierarchies take
-/// 6 MB each) the loads then overlap other work.
+/// 4.5 MB each) the loads then overlap other work.
 #[inline(always)]
 pub(super) fn prefetch_children(b1: &Bvh, b2: &Bvh, p: &NodePair) {
     #[cfg(target_arch = "x86_64")]
@@ -183,14 +183,7 @@ pub(super) fn prefetch_children(b1: &Bvh, b2: &Bvh, p: &NodePair) {
         }
         for c in model.children(node) {
             if !c.is_leaf() {
-                use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-                let v = (model.inner_ssv(c) as *const CompactSsv).cast::<i8>();
-                // SAFETY: prefetching has no effect on memory; `v` and `v + 64` lie in the node
-                // (the volume is 96 bytes).
-                unsafe {
-                    _mm_prefetch::<_MM_HINT_T0>(v);
-                    _mm_prefetch::<_MM_HINT_T0>(v.add(64));
-                }
+                model.prefetch(c);
             }
         }
     }
