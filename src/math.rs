@@ -156,6 +156,22 @@ pub(crate) fn most(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
+/// Asks the processor to bring the cache line holding address `p` into the cache: a hint, which
+/// reads nothing into the program and cannot fault, whatever `p` is (nothing on other
+/// architectures, nor under Miri). The one prefetch every search and the build use.
+#[inline(always)]
+pub(crate) fn prefetch_line(p: *const u8) {
+    #[cfg(all(target_arch = "x86_64", not(miri)))]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE, which `_mm_prefetch` needs, is part of every x86_64 processor; a prefetch
+        // has no effect on memory and does not fault, even for an address outside the program's.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast::<i8>()) };
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
+    let _ = p;
+}
+
 /// Whether the distance search may run its copies compiled for AVX2 (x86-64 processors since
 /// about 2013; the check is a cached flag). Those copies do the same IEEE operations in the same
 /// order as the portable ones (Rust never fuses a multiply and an add on its own), so every answer

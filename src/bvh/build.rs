@@ -26,7 +26,7 @@ use super::{Bvh, CollisionVolume, Node, NodeBox, NodeRef, NodeSlots, VolumeKind}
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
-use crate::math::{Mat3, Vec3, frame_from};
+use crate::math::{Mat3, Vec3, frame_from, prefetch_line};
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Below this depth the split is at the mean, as the paper says; past it (only on adversarial input
@@ -909,16 +909,9 @@ impl Met {
 /// Asks the processor to bring `v[i]` (if `i` is in bounds) into the cache, where it can.
 #[inline(always)]
 fn prefetch<T>(v: &[T], i: usize) {
-    #[cfg(all(target_arch = "x86_64", not(miri)))]
     if let Some(p) = v.get(i) {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        // SAFETY: SSE, which `_mm_prefetch` needs, is part of every x86_64 processor; a prefetch
-        // only hints the cache (it reads nothing into the program and cannot fault), here of a
-        // valid reference.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(p).cast::<i8>()) };
+        prefetch_line(std::ptr::from_ref(p).cast());
     }
-    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
-    let _ = (v, i);
 }
 
 /// A multiplicative hash of a vertex's bit pattern: a table of `2^(64 - shift)` slots takes its

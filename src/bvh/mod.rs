@@ -37,7 +37,7 @@ use crate::bounding_volume::{BoundingVolume, CompactSsv, Obb, Ssv};
 use crate::error::Error;
 use crate::geometry::Tri;
 use crate::geometry::{RESCALE_HI, RESCALE_LO};
-use crate::math::{Mat3, RelPose, Vec3, frame_from};
+use crate::math::{Mat3, RelPose, Vec3, frame_from, prefetch_line};
 use std::sync::OnceLock;
 
 /// A handle on a node of the hierarchy: an inner node or a leaf (one triangle). What the queries
@@ -531,21 +531,11 @@ impl Bvh {
     /// 112 bytes (two or three, by where it starts). A hint; nothing on other architectures.
     #[inline(always)]
     pub fn prefetch(&self, r: NodeRef) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-            let p = std::ptr::from_ref(&self.nodes[r.index()]).cast::<i8>();
-            // SAFETY: prefetching has no effect on memory; `p`, `p + 64` and `p + 111` lie in the
-            // node (112 bytes), and SSE, which `_mm_prefetch` needs, is part of every x86_64
-            // processor.
-            unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(p);
-                _mm_prefetch::<_MM_HINT_T0>(p.add(64));
-                _mm_prefetch::<_MM_HINT_T0>(p.add(size_of::<Node>() - 1));
-            }
+        let p = std::ptr::from_ref(&self.nodes[r.index()]).cast::<u8>();
+        // Its first byte, 64 bytes on and its last byte: every line it spans.
+        for at in [0, 64, size_of::<Node>() - 1] {
+            prefetch_line(p.wrapping_add(at));
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = r;
     }
 
     /// Number of inner nodes (one less than the triangles).

@@ -28,7 +28,7 @@ use super::saved::advise_huge_pages;
 use super::{Bvh, MAX_DEPTH, TriangleBounds};
 use crate::error::Error;
 use crate::geometry::predicates::max_abs;
-use crate::math::Vec3;
+use crate::math::{Vec3, prefetch_line};
 use std::sync::OnceLock;
 
 /// The most triangles a leaf holds.
@@ -376,16 +376,11 @@ impl RayTree {
     /// the caches its loading overlaps other work.
     #[inline(always)]
     pub fn prefetch(&self, i: u32) {
-        #[cfg(target_arch = "x86_64")]
         if let Some(n) = self.nodes.get(i as usize) {
-            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-            let p = (n as *const WideNode).cast::<i8>();
-            // SAFETY: prefetching has no effect on memory; `p` and `p + 64` lie in the node (128
-            // bytes, aligned to 64).
-            unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(p);
-                _mm_prefetch::<_MM_HINT_T0>(p.add(64));
-            }
+            // Its two lines (128 bytes, aligned to 64).
+            let p = std::ptr::from_ref(n).cast::<u8>();
+            prefetch_line(p);
+            prefetch_line(p.wrapping_add(64));
         }
     }
 
@@ -394,21 +389,15 @@ impl RayTree {
     /// stacked now and tested later.
     #[inline(always)]
     pub fn prefetch_items<T>(items: Option<&[T]>) {
-        #[cfg(target_arch = "x86_64")]
         if let Some(items) = items {
-            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
             let start = items.as_ptr() as usize;
             let end = start + std::mem::size_of_val(items);
             let mut line = start & !63;
             while line < end {
-                // SAFETY: prefetching has no effect on memory (nor faults); the lines hold
-                // `items`.
-                unsafe { _mm_prefetch::<_MM_HINT_T0>(line as *const i8) };
+                prefetch_line(line as *const u8);
                 line += 64;
             }
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = items;
     }
 
     /// The links of node `i`'s children: per child, an inner node's index or a leaf's first

@@ -246,7 +246,7 @@ impl Front {
             Self::uses_front(q.search)
                 && *u1 == q.m1.uid()
                 && *u2 == q.m2.uid()
-                && Self::change(prev, q.rel, q.b1, q.b2).is_some()
+                && Self::moved_little(prev, q.rel, q.b1, q.b2)
         })
     }
 
@@ -255,13 +255,13 @@ impl Front {
         search.triangle_cache && search.resolve(Strategy::Priority) == Strategy::Priority
     }
 
-    /// The change of the relative pose from `prev` to `rel` (rotation, translation), when it is
-    /// small enough for a front to pay.
-    fn change(prev: &RelPose, rel: &RelPose, b1: &Bvh, b2: &Bvh) -> Option<(Mat3, Vec3)> {
+    /// Whether the relative pose moved little enough from `prev` to `rel` (rotation, translation)
+    /// for a front to pay.
+    fn moved_little(prev: &RelPose, rel: &RelPose, b1: &Bvh, b2: &Bvh) -> bool {
         let dr = rel.rot - prev.rot;
         let dt = rel.trans - prev.trans;
         let scale = b1.root_size() + b2.root_size();
-        (dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale).then_some((dr, dt))
+        dr.amax() <= Self::MOTION && dt.amax() <= Self::MOTION * scale
     }
 
     /// The front to start the query `q` from, if it suits it, with how much its bounds may
@@ -275,7 +275,9 @@ impl Front {
         if !same {
             return None;
         }
-        Self::change(prev, q.rel, q.b1, q.b2)?;
+        if !Self::moved_little(prev, q.rel, q.b1, q.b2) {
+            return None;
+        }
         let motion = Motion::new(prev, q.rel, [q.b1.reach(), q.b2.reach()]);
         Some((&self.nodes[..], motion))
     }
