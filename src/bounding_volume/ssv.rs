@@ -480,20 +480,18 @@ impl Ssv {
         let len = n2[i].sqrt();
         let x = if len > 0.0 { e[i] / len } else { Vec3::x() };
         let w = r - p;
-        // The second axis: the part of `w` across the edge, made orthogonal to `x` twice (once
-        // leaves a sliver's axis far from orthogonal, as the part is then mostly rounding), so
-        // that the frame is orthonormal to rounding whatever the triangle's shape: the distance
-        // and overlap tests rely on it.
+        // The second axis: the part of `w` across the edge, as `(x x w) x x`. A vector crossed
+        // with `x` is orthogonal to `x` up to rounding however inexact it is, so the frame is
+        // orthonormal to rounding whatever the triangle's shape (the distance and overlap tests
+        // rely on it), with one root and one division after `x`'s (this runs for every leaf a
+        // distance search meets: a short chain of latencies counts).
         // A triangle whose height across that edge is below 1e-12 of its length is taken as a
         // segment (the part across is then rounding, which may point anywhere, even along `x`,
         // and would make no frame); the radius then covers the third vertex.
-        let across = |v: Vec3| v - x * x.dot(&v);
-        let y0 = across(across(w));
-        let n0 = y0.norm();
-        let y = if n0 > len * 1e-12 && n0.is_finite() {
-            let y1 = y0 / n0;
-            let y2 = across(y1);
-            y2 / y2.norm()
+        let up = x.cross(&w).cross(&x);
+        let height = up.norm();
+        let y = if height > len * 1e-12 && height.is_finite() {
+            up / height
         } else {
             axis_across(&x)
         };
