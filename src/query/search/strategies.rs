@@ -210,7 +210,14 @@ impl ClosestSearch<'_> {
                     if c.bound >= cutoff(self.best.d) {
                         // Pruned now, pruned later: the answer only improves.
                         self.pruned(&c, unit(axis));
-                    } else if go_on {
+                        continue;
+                    }
+                    // Its volumes on their way into the cache while it waits (as in the
+                    // depth-first search).
+                    if self.prefetch {
+                        prefetch_children(self.b1, self.b2, &c);
+                    }
+                    if go_on {
                         next = Some(c);
                     } else if queue.len() < qsize {
                         queue.push(c);
