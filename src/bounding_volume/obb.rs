@@ -522,6 +522,24 @@ mod tests {
     use crate::test_rng::Lcg;
     use nalgebra::{Rotation3, Unit};
 
+    /// Tests the offsets either side of where `test`'s verdict flips, between the offset 0
+    /// (overlap) and a far one (found by bisection), for case `k`.
+    fn around_flip(k: usize, test: impl Fn(f64) -> bool) {
+        let (mut lo, mut hi) = (0.0, 100.0);
+        assert!(test(lo) && !test(hi), "case {k}");
+        while hi - lo > f64::EPSILON * hi {
+            let mid = 0.5 * (lo + hi);
+            if test(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        for s in [lo.next_down(), hi.next_up()] {
+            test(s);
+        }
+    }
+
     /// The box-box test's copy compiled for AVX2 gives the same verdict as the portable one
     /// (where the processor has no AVX2, both are the portable one): on random poses, and at the
     /// last representable offsets either side of where the portable copy's verdict flips, with
@@ -575,20 +593,7 @@ mod tests {
             } else {
                 misses += 1;
             }
-            // Where the verdict flips, between the offset 0 (overlap) and a far one.
-            let (mut lo, mut hi) = (0.0, 100.0);
-            assert!(test(lo) && !test(hi), "case {k}");
-            while hi - lo > f64::EPSILON * hi {
-                let mid = 0.5 * (lo + hi);
-                if test(mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            for s in [lo.next_down(), hi.next_up()] {
-                test(s);
-            }
+            around_flip(k, test);
         }
         assert!(hits > 2000 && misses > 2000, "{hits} {misses}");
     }
@@ -634,19 +639,7 @@ mod tests {
             } else {
                 misses += 1;
             }
-            let (mut lo, mut hi) = (0.0, 100.0);
-            assert!(test(lo) && !test(hi), "case {k}");
-            while hi - lo > f64::EPSILON * hi {
-                let mid = 0.5 * (lo + hi);
-                if test(mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            for s in [lo.next_down(), hi.next_up()] {
-                test(s);
-            }
+            around_flip(k, test);
         }
         assert!(hits > 2000 && misses > 2000, "{hits} {misses}");
     }
