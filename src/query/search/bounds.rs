@@ -5,6 +5,7 @@
 use super::ClosestSearch;
 use crate::bounding_volume::{CompactSsv, DistanceVolume, Ssv, Want};
 use crate::bvh::{Bvh, NodeRef};
+use crate::geometry::Tri;
 use crate::math::{RelPose, Vec3};
 use crate::query::traversal::{LeafCache, NodePair};
 use std::mem::MaybeUninit;
@@ -18,11 +19,15 @@ pub(crate) struct LeafVolumes {
     /// Volumes recently posed by [`expand`]: a node stays the fixed side of several expansions
     /// close together, so a posed volume is often asked for again soon.
     posed: PosedVolumes,
+    /// Model 2's triangles recently tested, posed in model 1's frame: a leaf of one model is
+    /// tested against a few neighbouring leaves of the other in turn, so the same few of model 2
+    /// come back alternately (a leaf against a node of two leaves, then the next leaf).
+    pub(super) triangles: LeafCache<Tri>,
 }
 
 impl LeafVolumes {
     /// Empty caches in `slot`, made in place (only their keys are written: moving a value made
-    /// elsewhere would copy every slot, about 21 KB).
+    /// elsewhere would copy every slot, about 26 KB).
     #[inline(always)]
     pub(crate) fn init(slot: &mut MaybeUninit<LeafVolumes>) -> &mut LeafVolumes {
         let p = slot.as_mut_ptr();
@@ -31,6 +36,7 @@ impl LeafVolumes {
         unsafe {
             LeafCache::init_at(&raw mut (*p).first);
             LeafCache::init_at(&raw mut (*p).second);
+            LeafCache::init_at(&raw mut (*p).triangles);
             (&raw mut (*p).posed.keys).write([0; POSED_SLOTS]);
             slot.assume_init_mut()
         }

@@ -27,7 +27,7 @@ use super::front::{FrontPair, Motion};
 use super::traversal::NodePair;
 use crate::bounding_volume::Ssv;
 use crate::bvh::Bvh;
-use crate::geometry::{Plane, Tri};
+use crate::geometry::Plane;
 use crate::math::{RelPose, Vec3, avx2_or_portable};
 
 /// Two models of at least this many triangles together (hierarchies of about 1.3 MB, more than
@@ -56,9 +56,6 @@ pub(crate) struct ClosestSearch<'a> {
     slack: f64,
     /// The triangle whose plane last showed a pair apart, to be tried first next time.
     plane_first: Plane,
-    /// The model 2 triangle last tested, posed in model 1's frame, and its index (`usize::MAX`:
-    /// none yet): consecutive tests often share it (a leaf against a node of two leaves).
-    posed: (usize, Tri),
     /// No triangle pair of the two models needs rescaling (see [`Bvh::in_kernel_range`]).
     in_range: bool,
     /// The two hierarchies are large enough for the depth-first search to prefetch the volumes
@@ -93,7 +90,6 @@ impl<'a> ClosestSearch<'a> {
             rel,
             slack: Ssv::slack_for(b1.scale, b2.scale, &rel),
             plane_first: Plane::A,
-            posed: (usize::MAX, [Vec3::zeros(); 3]),
             in_range: b1.in_kernel_range(b2, &rel),
             prefetch: b1.num_tris() + b2.num_tris() >= PREFETCH_TRIANGLES,
             best: Best {

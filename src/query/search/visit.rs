@@ -5,6 +5,7 @@
 use super::bounds::{Child, LeafChildren, expand, leaf_children};
 use super::{Best, ClosestSearch};
 use crate::bounding_volume::Want;
+use crate::bvh::NodeRef;
 use crate::geometry::{Near, tri_distance_below};
 use crate::math::Vec3;
 use crate::query::traversal::NodePair;
@@ -16,18 +17,10 @@ impl ClosestSearch<'_> {
     /// a zero vector.
     pub(super) fn test_triangles(&mut self, ta: usize, tb: usize) -> (f64, Vec3) {
         self.stats.tri_tests += 1;
-        if self.posed.0 != tb {
-            let t2 = self.b2.tri(tb);
-            self.posed = (
-                tb,
-                [
-                    self.rel.apply(&t2[0]),
-                    self.rel.apply(&t2[1]),
-                    self.rel.apply(&t2[2]),
-                ],
-            );
-        }
-        let moved = &self.posed.1;
+        let (b2, rel) = (self.b2, &self.rel);
+        let moved = self.leaves.triangles.get_leaf(NodeRef::leaf(tb), |r| {
+            b2.tri(r.triangle()).map(|v| rel.apply(&v))
+        });
         // A front keeps the pair's bound for the next query: the exact distance prunes more of
         // the next query than its cost here.
         let cutoff = if self.front.is_some() {
