@@ -17,7 +17,7 @@ pub(crate) use predicates::{RESCALE_HI, RESCALE_LO};
 pub use segment_segment::{segment_segment, segment_segment_dir};
 pub(crate) use solid_angle::{SolidAngleSum, solid_angle};
 pub use tri_distance::tri_distance;
-pub(crate) use tri_distance::{Near, Plane, tri_distance_below};
+pub(crate) use tri_distance::{Near, Plane, PlanedTri, tri_distance_below};
 pub use tri_overlap::tri_overlap;
 
 use crate::math::Vec3;

@@ -263,6 +263,7 @@ pub(crate) fn orient3d(a: &Vec3, b: &Vec3, c: &Vec3, d: &Vec3) -> f64 {
 }
 
 /// The plane of a triangle prepared for many `orient3d` evaluations against it.
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct PlaneFilter {
     base: Vec3,
     /// `(b - a) x (c - a)` in floating point.

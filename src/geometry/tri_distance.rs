@@ -76,24 +76,93 @@ pub(crate) fn tri_distance_below(
 /// least `cutoff` from it.
 #[inline]
 fn apart(plane: &PlaneFilter, sides: &Sides, cutoff: f64) -> bool {
-    let clearance = sides.clearance();
+    far_enough(sides.clearance(), cutoff, needed(plane))
+}
+
+/// With the least exact orientation's magnitude of some points at least `clearance` (0 when they
+/// are not certainly strictly on one side of the plane), whether they are at least `cutoff` from
+/// it; `needed` is the plane's [`needed`].
+#[inline(always)]
+fn far_enough(clearance: f64, cutoff: f64, needed: f64) -> bool {
     if clearance <= 0.0 {
         return false;
     }
     // The exact heights are the exact orientations over the exact normal's length, which is at
-    // most |n| + e: the test is clearance / cutoff >= |n| + e, without a root by
-    // (|n| + e)^2 <= (1 + 2^-40) |n|^2 + (1 + 2^40) e^2. The quotient, not the squares of the
-    // orientations (fourth powers of the coordinates), so that nothing overflows: a quotient too
-    // large to square is far beyond the cutoff.
+    // most |n| + e: the test is clearance / cutoff >= |n| + e, without a root (see `needed`). The
+    // quotient, not the squares of the orientations (fourth powers of the coordinates), so that
+    // nothing overflows: a quotient too large to square is far beyond the cutoff.
+    let q = clearance / cutoff;
+    q * q >= needed
+}
+
+/// A bound on the square of the exact normal's length of `plane`, `|n| + e` with `e` the bound
+/// on its rounding, without a root: (|n| + e)^2 <= (1 + 2^-40) |n|^2 + (1 + 2^40) e^2. NaN (no
+/// comparison with it holds) when too small to prove anything (see below).
+#[inline(always)]
+fn needed(plane: &PlaneFilter) -> f64 {
     const K: f64 = 1.0 / (1u64 << 40) as f64;
     // Squares that underflow prove nothing (a triangle tiny beside the other's coordinates, after
     // the kernel's rescaling, has a normal whose square is subnormal or zero): only a right side
     // far above the subnormals, where their loss is below the margins, decides.
     const LEAST: f64 = 1e-270;
     let e = plane.normal_error_bound();
-    let q = clearance / cutoff;
     let needed = (1.0 + K) * plane.n.norm_squared() + (1.0 + 1.0 / K) * (e * e);
-    needed >= LEAST && q * q >= needed
+    if needed >= LEAST { needed } else { f64::NAN }
+}
+
+/// A triangle with its plane prepared for [`PlanedTri::apart`]: kept with a triangle tested
+/// against many others (a search's cache of recent ones), it saves each test the plane's cross
+/// product, its error bound and a division.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PlanedTri {
+    pub tri: Tri,
+    plane: PlaneFilter,
+    /// An upper bound on `|n| + e`, the exact normal's length (see [`needed`]); NaN when
+    /// [`needed`] is (no comparison with it then holds).
+    reach: f64,
+}
+
+impl PlanedTri {
+    #[inline]
+    pub(crate) fn new(tri: Tri) -> PlanedTri {
+        let plane = PlaneFilter::new(&tri[0], &tri[1], &tri[2]);
+        // The root and the product each round by at most half a unit in the last place: the
+        // factor more than covers both, and the rounding of the product with the cutoff in
+        // `apart` (all within the normal range, see there).
+        const UP: f64 = 1.0 + 1.0 / (1u64 << 49) as f64;
+        PlanedTri {
+            tri,
+            plane,
+            reach: needed(&plane).sqrt() * UP,
+        }
+    }
+
+    /// Whether `a` lies certainly strictly on one side of this triangle's plane with its nearest
+    /// vertex at least `cutoff` from it, which the pair is then too: the test that
+    /// [`tri_distance_below`] with `first` = [`Plane::B`] tries first (for `a` and this triangle),
+    /// as sound (it may differ from that one's verdict only within a few roundings). Only that
+    /// test, inlined where a search tests its pairs: in the common case, that the plane settles
+    /// the pair, the test needs no more.
+    #[inline(always)]
+    pub(crate) fn apart(&self, a: &Tri, cutoff: f64) -> bool {
+        // As `Sides::eval` then `Sides::clearance`.
+        let (o0, e0) = self.plane.eval_with_error(&a[0]);
+        let (o1, e1) = self.plane.eval_with_error(&a[1]);
+        let (o2, e2) = self.plane.eval_with_error(&a[2]);
+        let certain = o0.abs() > e0 && o1.abs() > e1 && o2.abs() > e2;
+        let one_side = o0 > 0.0 && o1 > 0.0 && o2 > 0.0 || o0 < 0.0 && o1 < 0.0 && o2 < 0.0;
+        if !(certain && one_side) {
+            return false;
+        }
+        let clearance = (o0.abs() - e0).min(o1.abs() - e1).min(o2.abs() - e2);
+        // The heights are at least clearance / (|n| + e): at least `cutoff` when clearance >=
+        // cutoff * reach, a product without the division of `far_enough`. The product rounds
+        // by a relative half unit (covered by `reach`'s margin) when normal; when it underflows,
+        // by 2^-1075 at most, which the added 2^-1060 covers (and a normal product hardly
+        // notices).
+        const TINY: f64 = f64::from_bits(1 << 14); // 2^-1060
+        clearance >= cutoff * self.reach + TINY
+    }
 }
 
 /// Which candidate is closest so far.
@@ -456,6 +525,45 @@ mod tests {
         }
         // The planes do settle pairs (the point of the cutoff), most of the facing ones.
         assert!(apart > beyond / 3, "{apart} of {beyond}");
+    }
+
+    /// The cached plane's test: never apart below the cutoff (pairs at and a hair around it, and
+    /// at a zero cutoff), and apart for the facing pairs that `tri_distance_below` shows apart by
+    /// `b`'s plane, but for a few roundings.
+    #[test]
+    fn planed_tri_apart_is_sound_and_agrees() {
+        let mut rng = Lcg(41);
+        let (mut both, mut only_below) = (0, 0);
+        for k in 0..20000 {
+            let (a, b) = pair(&mut rng, k);
+            // As a search's `in_range`: no rescaling (the planes are then the same).
+            let in_range =
+                kernel_rescale(max_abs(&[&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]])).is_none();
+            let planed = PlanedTri::new(b);
+            let exact = tri_distance(&a, &b).distance;
+            for f in [0.0, 0.5, 1.0 - 1e-15, 1.0, 1.0 + 1e-15, 1.0 + 1e-12] {
+                let cutoff = exact * f;
+                if planed.apart(&a, cutoff) {
+                    assert!(
+                        exact >= cutoff * (1.0 - 1e-13),
+                        "case {k}: {exact} {cutoff}"
+                    );
+                }
+            }
+            if in_range {
+                let cutoff = exact * 0.5;
+                let below = matches!(
+                    tri_distance_below(&a, &b, cutoff, Plane::B, false),
+                    Near::Apart(Plane::B)
+                );
+                match (below, planed.apart(&a, cutoff)) {
+                    (true, true) => both += 1,
+                    (true, false) => only_below += 1,
+                    (false, fast) => assert!(!fast, "case {k}"),
+                }
+            }
+        }
+        assert!(both > 1000 && only_below == 0, "{both} {only_below}");
     }
 
     /// Pairs a hair beyond the cutoff: whether they are called apart or not, never one nearer.

@@ -5,7 +5,7 @@
 use super::ClosestSearch;
 use crate::bounding_volume::{CompactSsv, DistanceVolume, Ssv, Want};
 use crate::bvh::{Bvh, NodeRef};
-use crate::geometry::Tri;
+use crate::geometry::PlanedTri;
 use crate::math::{RelPose, Vec3};
 use crate::query::traversal::{LeafCache, NodePair};
 use std::mem::MaybeUninit;
@@ -21,8 +21,9 @@ pub(crate) struct LeafVolumes {
     posed: PosedVolumes,
     /// Model 2's triangles recently tested, posed in model 1's frame: a leaf of one model is
     /// tested against a few neighbouring leaves of the other in turn, so the same few of model 2
-    /// come back alternately (a leaf against a node of two leaves, then the next leaf).
-    pub(super) triangles: LeafCache<Tri>,
+    /// come back alternately (a leaf against a node of two leaves, then the next leaf). With
+    /// their planes, by which most pairs are shown apart (see `test_triangles`).
+    pub(super) triangles: LeafCache<PlanedTri>,
 }
 
 impl LeafVolumes {
