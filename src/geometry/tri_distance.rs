@@ -145,16 +145,9 @@ impl PlanedTri {
     /// the pair, the test needs no more.
     #[inline(always)]
     pub(crate) fn apart(&self, a: &Tri, cutoff: f64) -> bool {
-        // As `Sides::eval` then `Sides::clearance`.
-        let (o0, e0) = self.plane.eval_with_error(&a[0]);
-        let (o1, e1) = self.plane.eval_with_error(&a[1]);
-        let (o2, e2) = self.plane.eval_with_error(&a[2]);
-        let certain = o0.abs() > e0 && o1.abs() > e1 && o2.abs() > e2;
-        let one_side = o0 > 0.0 && o1 > 0.0 && o2 > 0.0 || o0 < 0.0 && o1 < 0.0 && o2 < 0.0;
-        if !(certain && one_side) {
-            return false;
-        }
-        let clearance = (o0.abs() - e0).min(o1.abs() - e1).min(o2.abs() - e2);
+        // 0 unless `a` is certainly strictly on one side, which the comparison below then fails
+        // (its right side is positive, or NaN).
+        let clearance = Sides::eval(&self.plane, a).clearance();
         // The heights are at least clearance / (|n| + e): at least `cutoff` when clearance >=
         // cutoff * reach, a product without the division of `far_enough`. The product rounds
         // by a relative half unit (covered by `reach`'s margin) when normal; when it underflows,

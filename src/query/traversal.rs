@@ -133,13 +133,9 @@ impl<V: Copy> LeafCache<V> {
         if !r.is_leaf() {
             return inner(r);
         }
-        let i = self.fill(r, leaf);
-        // SAFETY: `fill` just set the slot's key to this leaf, with its volume.
-        unsafe { self.volumes[i].assume_init_ref() }
+        self.get_leaf(r, leaf)
     }
 
-    /// The volumes of nodes `rs`, by reference (no copy): an inner node's as `inner` gives it, a
-    /// leaf's from the table (computed by `leaf` when not there).
     /// The value of leaf `r` (a leaf), made by `leaf` unless its slot holds it.
     #[inline(always)]
     pub fn get_leaf(&mut self, r: NodeRef, leaf: impl Fn(NodeRef) -> V) -> &V {
@@ -148,6 +144,8 @@ impl<V: Copy> LeafCache<V> {
         unsafe { self.volumes[i].assume_init_ref() }
     }
 
+    /// The volumes of nodes `rs`, by reference (no copy): an inner node's as `inner` gives it, a
+    /// leaf's from the table (computed by `leaf` when not there).
     #[inline(always)]
     pub fn get_two<'x>(
         &'x mut self,
