@@ -573,15 +573,17 @@ fn node<'a>(
         this.children[k] = NodeRef::inner(cbase);
         // The child's distinct vertices, in the order its triangles first give them, with their
         // multiplicities and positions.
-        // Written into room for every corner (the counts zeroed), then cut to the vertices met:
-        // no capacity check per corner, and the only branch is on a vertex being new.
+        // Written into room for every corner, then cut to the vertices met: no capacity check per
+        // corner, and the only branch is on a vertex being new. A new vertex's count is written
+        // as 1 there (rather than the room zeroed first, a pass over every corner's slot, and
+        // added to after), a repeat's added to.
         let start = scratch.lists.len();
         let tag = cbase as u32;
         let corners = 3 * crecs.len();
         scratch.lists.reserve(corners);
-        scratch.counts.resize(start + corners, 0);
+        scratch.counts.reserve(corners);
         let room = &mut scratch.lists.spare_capacity_mut()[..corners];
-        let counts = &mut scratch.counts[start..];
+        let counts = &mut scratch.counts.spare_capacity_mut()[..corners];
         let mut len = 0usize;
         for r in crecs.iter() {
             for &v in &r.face {
@@ -592,14 +594,20 @@ fn node<'a>(
                         pos: len as u32,
                     };
                     room[len].write(v);
+                    counts[len].write(1);
                     len += 1;
+                } else {
+                    // SAFETY: a vertex met before has its count at `pos < len`, written when it
+                    // was first met.
+                    unsafe { *counts[slot.pos as usize].assume_init_mut() += 1 };
                 }
-                counts[slot.pos as usize] += 1;
             }
         }
-        // SAFETY: the first `len` entries of the spare capacity were written just above.
-        unsafe { scratch.lists.set_len(start + len) };
-        scratch.counts.truncate(start + len);
+        // SAFETY: the first `len` entries of both spare capacities were written just above.
+        unsafe {
+            scratch.lists.set_len(start + len);
+            scratch.counts.set_len(start + len);
+        }
         let sub = Subtree {
             recs: crecs,
             nodes: cnodes,
@@ -1015,7 +1023,7 @@ fn split(recs: &mut [Record], keys: &mut [f64], median: bool) -> usize {
 /// model's kind (for the hybrid the kind that suits the points) and the box. The same as
 /// [`Ssv::fit`] and [`Obb::fit`], bit for bit, for less work: the points are taken into the frame
 /// once for all the fits (into `local`, scratch), and both volumes are covered in one pass that
-/// skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
+/// (above `SMALL_COVER` points) skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
 fn fit_volumes(
     volume: VolumeKind,
     axes: &Mat3,
@@ -1053,6 +1061,21 @@ fn fit_volumes(
     };
     let mut ssv = Ssv::fit_uncovered(kind, axes, points.len(), at, &[], lo.z, hi.z);
     let mut obb = Obb::from_bounds(axes, &lo, &hi);
+    if points.len() <= SMALL_COVER {
+        // Every point, exactly as `Ssv::cover` and `Obb::cover` measure it; a point inside
+        // changes neither the largest distance nor the extents, so this is the same, bit for
+        // bit, as the pass below.
+        let mut far2 = 0.0f64;
+        for p in points {
+            let d2 = ssv.core_distance_squared(p);
+            if d2 > far2 {
+                far2 = d2;
+            }
+            obb.cover_point(p);
+        }
+        ssv.radius = ssv.radius.max(far2.sqrt());
+        return (ssv, obb);
+    }
 
     // Both covers in one pass, each exactly as `Ssv::cover` and `Obb::cover` do it, but only for
     // the points that might move them. A point's offsets from a volume's reference point, as the
@@ -1100,6 +1123,13 @@ fn fit_volumes(
     ssv.radius = ssv.radius.max(far2.sqrt());
     (ssv, obb)
 }
+
+/// Up to this many points, `fit_volumes` covers both volumes by the exact computation for every
+/// point, without the test that skips the points clearly inside: in a small node most points are
+/// on a boundary (about a third of a 40,000-triangle build's points take the exact computation,
+/// nearly all of them in small nodes), so the test rarely saves work and its branch is
+/// unpredictable. 16 gave the fewest instructions (BENCHMARKS.md, section 48).
+const SMALL_COVER: usize = 16;
 
 /// Bound on the rounding of a volume's offsets from a point (see `fit_volumes`), relative to the
 /// magnitudes involved, and the relative margin of the test that uses it.
