@@ -188,6 +188,9 @@ pub fn distance_into(
     if result.front.worth_recording(&asked) {
         search.record_front(result.front.take_spare());
     }
+    // An approximate query (both errors nonzero: see `cutoff` below) keeps most of the children
+    // it bounds: prefetching for them before their bounds pays there (section 50).
+    search.prefetch_ahead(rel_err > 0.0 && abs_err > 0.0);
     let front = result.front.start(&asked);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d

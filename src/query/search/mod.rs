@@ -61,6 +61,9 @@ pub(crate) struct ClosestSearch<'a> {
     /// The two hierarchies are large enough for the depth-first search to prefetch the volumes
     /// of the nodes it stacks (see [`PREFETCH_TRIANGLES`]).
     prefetch: bool,
+    /// With `prefetch`, an expansion prefetches what its children's expansions will read rather
+    /// than what a kept child's will (see [`ClosestSearch::prefetch_ahead`]).
+    ahead: bool,
     pub best: Best,
     pub stats: Stats,
     /// The smallest bound among pruned BVTT nodes: with `best.d`, a lower bound on the true distance.
@@ -92,6 +95,7 @@ impl<'a> ClosestSearch<'a> {
             plane_first: Plane::A,
             in_range: b1.in_kernel_range(b2, &rel),
             prefetch: b1.num_tris() + b2.num_tris() >= PREFETCH_TRIANGLES,
+            ahead: false,
             best: Best {
                 d: f64::INFINITY,
                 p: Vec3::zeros(),
@@ -155,6 +159,18 @@ impl<'a> ClosestSearch<'a> {
                 }
             },
         )
+    }
+
+    /// Asks the search to prefetch one level further ahead (on models large enough to prefetch at
+    /// all, see [`PREFETCH_TRIANGLES`]): when it is about to expand a BVTT node, the volumes that
+    /// each child's own expansion will read, before the children's bounds are known, in place of
+    /// the prefetch for each kept child after them. The loads get a whole expansion's time, but
+    /// are asked for children that are then pruned too: it pays where most children survive
+    /// their bound (an approximate distance query on the nested shells, about 3% faster) and
+    /// costs where many are pruned (3-5% on an exact one on the spheres; BENCHMARKS.md, sections
+    /// 37 and 50).
+    pub fn prefetch_ahead(&mut self, on: bool) {
+        self.ahead = on && self.prefetch;
     }
 
     /// Keeps the front of this search (see the `front` field) in `buffer` (cleared first).

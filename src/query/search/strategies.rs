@@ -5,6 +5,7 @@
 
 use super::ClosestSearch;
 use super::bounds::prefetch_children;
+use crate::bvh::Bvh;
 use crate::math::{Vec3, least};
 use crate::query::front::{FrontPair, Motion};
 use crate::query::queue::RadixQueue;
@@ -45,6 +46,11 @@ impl ClosestSearch<'_> {
                 self.pruned(&p, Vec3::zeros());
                 continue;
             }
+            // The volumes its children's expansions will read, while it bounds them (an
+            // approximate query's: see `ClosestSearch::prefetch_ahead`).
+            if self.ahead {
+                prefetch_grandchildren(self.b1, self.b2, &p);
+            }
             if let Some([(x, _), (y, _)]) = self.visit_unordered(&p, cut, !loose) {
                 // Nearer child on top; a child at or beyond the cutoff is pruned now (the cutoff
                 // only falls). Both without branches where no front is kept: either decision is
@@ -56,8 +62,9 @@ impl ClosestSearch<'_> {
                     for c in [far, near] {
                         let keep = c.bound < cut;
                         // Its volumes on their way into the cache while the search goes on (the
-                        // far child's subtree comes first only after the near child's).
-                        if keep && self.prefetch {
+                        // far child's subtree comes first only after the near child's); already
+                        // asked for when its parent was, with `ahead`.
+                        if keep && self.prefetch && !self.ahead {
                             prefetch_children(self.b1, self.b2, &c);
                         }
                         stack.push_if(c, keep);
@@ -191,6 +198,10 @@ impl ClosestSearch<'_> {
                     self.pruned(&p, Vec3::zeros());
                     break;
                 }
+                // As in the depth-first search.
+                if self.ahead {
+                    prefetch_grandchildren(self.b1, self.b2, &p);
+                }
                 let Some([(near, near_axis), (far, far_axis)]) = self.visit(&p, cut, true) else {
                     if stop(self.best.d) {
                         break;
@@ -213,8 +224,8 @@ impl ClosestSearch<'_> {
                         continue;
                     }
                     // Its volumes on their way into the cache while it waits (as in the
-                    // depth-first search).
-                    if self.prefetch {
+                    // depth-first search; with `ahead`, asked for already).
+                    if self.prefetch && !self.ahead {
                         prefetch_children(self.b1, self.b2, &c);
                     }
                     if go_on {
@@ -236,6 +247,27 @@ impl ClosestSearch<'_> {
             }
             queue.drain(|c| self.pruned(&c, Vec3::zeros()));
         });
+    }
+}
+
+/// For each child of the BVTT node `p` (by the descent rule of `expand`), asks for the volumes
+/// its own expansion will read (see [`prefetch_children`]): one level further ahead than the
+/// prefetch of a kept child, before the children's bounds are known.
+#[inline(always)]
+fn prefetch_grandchildren(b1: &Bvh, b2: &Bvh, p: &NodePair) {
+    let (a, b) = (p.a, p.b);
+    if a.is_leaf() && b.is_leaf() {
+        return;
+    }
+    let split_first = b.is_leaf() || !a.is_leaf() && b1.inner_ssv_size(a) >= b2.inner_ssv_size(b);
+    if split_first {
+        for c in b1.children(a) {
+            prefetch_children(b1, b2, &NodePair { a: c, ..*p });
+        }
+    } else {
+        for c in b2.children(b) {
+            prefetch_children(b1, b2, &NodePair { b: c, ..*p });
+        }
     }
 }
 
