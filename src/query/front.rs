@@ -70,6 +70,39 @@ pub(crate) struct FrontPair {
     /// A unit axis (in model 1's frame, from model 1's volume towards model 2's) that separated
     /// the node's volumes when it was measured; zero when none is known.
     pub axis: Vec3,
+    /// Model 1's side of the gap along `axis` once [`Motion::separation`] has measured it: model
+    /// 1's volume does not move in its own frame, so its support along a kept axis holds from
+    /// query to query, and only model 2's is measured again.
+    pub side1: Support,
+}
+
+impl FrontPair {
+    /// The node `pair` with the unit separating `axis` (or zero), model 1's support along it not
+    /// yet measured.
+    #[inline(always)]
+    pub fn new(pair: NodePair, axis: Vec3) -> FrontPair {
+        FrontPair {
+            pair,
+            axis,
+            side1: Support::UNKNOWN,
+        }
+    }
+}
+
+/// A volume's support along an axis, with the magnitude of the points that enter it (see
+/// [`support`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Support {
+    h: f64,
+    m: f64,
+}
+
+impl Support {
+    /// Not measured yet.
+    pub const UNKNOWN: Support = Support {
+        h: f64::NAN,
+        m: f64::NAN,
+    };
 }
 
 impl Motion {
@@ -104,29 +137,21 @@ impl Motion {
             + UNDERFLOW_SLACK
     }
 
-    /// A lower bound now on the distance of the triangle pairs below the front node `(a, b)` (model
-    /// 1's node, model 2's) whose bound was `bound` at the front's pose: the volumes' gap along the
-    /// node's `axis` when it is not zero (see [`Motion::separation`]), else `bound` less the most
-    /// the node's points may have moved (left at `bound` when that is below `cut` already).
+    /// A lower bound now on the distance of the triangle pairs below the front node `f` whose
+    /// bound held at the front's pose: the volumes' gap along the node's axis when it is not zero
+    /// (see [`Motion::separation`]), else its bound less the most the node's points may have
+    /// moved (left at its bound when that is below `cut` already). With model 1's support along
+    /// the axis, measured or as kept (unknown without an axis).
     #[inline]
-    #[allow(clippy::too_many_arguments)]
-    pub fn renewed(
-        &self,
-        b1: &Bvh,
-        b2: &Bvh,
-        a: NodeRef,
-        b: NodeRef,
-        bound: f64,
-        axis: &Vec3,
-        cut: f64,
-    ) -> f64 {
-        if *axis != Vec3::zeros() {
-            self.separation(b1, b2, a, b, axis)
+    pub fn renewed(&self, b1: &Bvh, b2: &Bvh, f: &FrontPair, cut: f64) -> (f64, Support) {
+        let NodePair { a, b, bound } = f.pair;
+        if f.axis != Vec3::zeros() {
+            self.separation(b1, b2, a, b, &f.axis, f.side1)
         } else if bound < cut {
-            bound
+            (bound, f.side1)
         } else {
             let (o, e) = b2.anchor(b);
-            bound - self.bound(&o, e).min(self.whole)
+            (bound - self.bound(&o, e).min(self.whole), f.side1)
         }
     }
 
@@ -141,14 +166,32 @@ impl Motion {
     /// the radii's cover of the triangles, both exact up to rounding), so `64 eps` of their sum
     /// covers them. That makes the gap along `n` as computed; the distance is at least that gap
     /// over `|n|`, which is 1 within a few roundings.
+    ///
+    /// `side1`: model 1's support along `n` (`h1` with `M1`) when known from an earlier query,
+    /// else measured here; returned with the gap, for the next.
     #[inline]
-    fn separation(&self, b1: &Bvh, b2: &Bvh, a: NodeRef, b: NodeRef, n: &Vec3) -> f64 {
+    fn separation(
+        &self,
+        b1: &Bvh,
+        b2: &Bvh,
+        a: NodeRef,
+        b: NodeRef,
+        n: &Vec3,
+        side1: Support,
+    ) -> (f64, Support) {
         let u = -self.rot.tr_mul(n);
-        let (h1, m1) = support(b1, a, n, 1.0, self.vertex_scale[0]);
-        let (h2, m2) = support(b2, b, &u, self.rot_norm, self.vertex_scale[1]);
+        let Support { h: h1, m: m1 } = if side1.h.is_nan() {
+            support(b1, a, n, 1.0, self.vertex_scale[0])
+        } else {
+            side1
+        };
+        let Support { h: h2, m: m2 } = support(b2, b, &u, self.rot_norm, self.vertex_scale[1]);
         let gap = n.dot(&self.trans) - h1 - h2;
         let low = gap - (64.0 * f64::EPSILON * (m1 + self.rot_scale * m2) + self.gap_slack);
-        low - 4.0 * f64::EPSILON * low.abs()
+        (
+            low - 4.0 * f64::EPSILON * low.abs(),
+            Support { h: h1, m: m1 },
+        )
     }
 
     /// How far any point of model 2 may have moved.
@@ -165,12 +208,15 @@ impl Motion {
 /// last term rounded up to `u_norm r`); with the magnitude of the points that enter it: the 1-norm
 /// of the origin plus the sides and the radius, or `vertex_scale` for a triangle.
 #[inline(always)]
-fn support(bvh: &Bvh, r: NodeRef, u: &Vec3, u_norm: f64, vertex_scale: f64) -> (f64, f64) {
+fn support(bvh: &Bvh, r: NodeRef, u: &Vec3, u_norm: f64, vertex_scale: f64) -> Support {
     // Plain selects: every value is finite (a front is kept only for finite poses and models).
     let max = |x: f64, y: f64| if x > y { x } else { y };
     if r.is_leaf() {
         let [p, q, s] = bvh.tri(r.triangle());
-        (max(max(u.dot(&p), u.dot(&q)), u.dot(&s)), vertex_scale)
+        Support {
+            h: max(max(u.dot(&p), u.dot(&q)), u.dot(&s)),
+            m: vertex_scale,
+        }
     } else {
         let v = bvh.inner_ssv(r);
         let ([l0, l1], o) = (v.lengths, &v.origin);
@@ -178,7 +224,10 @@ fn support(bvh: &Bvh, r: NodeRef, u: &Vec3, u_norm: f64, vertex_scale: f64) -> (
             + max(u.dot(&v.axes[0]), 0.0) * l0
             + max(u.dot(&v.axes[1]), 0.0) * l1
             + u_norm * v.radius;
-        (h, o.x.abs() + o.y.abs() + o.z.abs() + l0 + l1 + v.radius)
+        Support {
+            h,
+            m: o.x.abs() + o.y.abs() + o.z.abs() + l0 + l1 + v.radius,
+        }
     }
 }
 
@@ -466,7 +515,12 @@ mod tests {
                 } else {
                     Vec3::new(f(), f(), f() + 1e-3).normalize()
                 };
-                let gap = m.separation(b1, b2, a, b, &n);
+                let (gap, side1) = m.separation(b1, b2, a, b, &n, Support::UNKNOWN);
+                // Model 1's support kept from an earlier query gives the same gap.
+                assert_eq!(
+                    m.separation(b1, b2, a, b, &n, side1).0.to_bits(),
+                    gap.to_bits()
+                );
                 let least = v2.iter().map(|q| n.dot(q)).fold(f64::INFINITY, f64::min)
                     - v1.iter()
                         .map(|p| n.dot(p))

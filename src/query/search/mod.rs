@@ -189,16 +189,28 @@ impl<'a> ClosestSearch<'a> {
     /// none known).
     #[inline]
     fn pruned(&mut self, p: &NodePair, axis: Vec3) {
-        self.pruned_min = self.pruned_min.min(p.bound);
-        self.left(p, axis);
+        self.pruned_pair(FrontPair::new(*p, axis));
+    }
+
+    /// As [`pruned`](ClosestSearch::pruned), for a node with what the front keeps of it.
+    #[inline]
+    fn pruned_pair(&mut self, f: FrontPair) {
+        self.pruned_min = self.pruned_min.min(f.pair.bound);
+        self.left_pair(f);
     }
 
     /// Records a node the search leaves behind in the front, when it keeps one.
     #[inline]
     fn left(&mut self, p: &NodePair, axis: Vec3) {
+        self.left_pair(FrontPair::new(*p, axis));
+    }
+
+    /// As [`left`](ClosestSearch::left), for a node with what the front keeps of it.
+    #[inline]
+    fn left_pair(&mut self, f: FrontPair) {
         if let Some(front) = &mut self.front {
             if front.try_reserve(1).is_ok() {
-                front.push(FrontPair { pair: *p, axis });
+                front.push(f);
             } else {
                 // Out of memory: no front this time (it only saves work).
                 self.front = None;

@@ -154,19 +154,24 @@ impl ClosestSearch<'_> {
             let mut queue = q.borrow_mut();
             queue.clear();
             let mut next = root;
-            for (i, &FrontPair { pair: seed, axis }) in seeds.iter().enumerate() {
+            for (i, f) in seeds.iter().enumerate() {
+                let FrontPair {
+                    pair: seed, axis, ..
+                } = *f;
                 let cut = cutoff(self.best.d);
                 let (a, b) = (seed.a, seed.b);
                 if let Some(m) = &motion {
                     // The old bound less the whole model's motion first (free), then the volumes'
                     // gap along the node's axis now (a few dot products; it may have grown since),
-                    // or without one, the old bound less the node's own motion.
-                    let mut now = seed.bound - m.whole();
+                    // or without one, the old bound less the node's own motion. Model 1's side of
+                    // the gap is kept with the node once measured (its volume does not move).
+                    let (mut now, mut side1) = (seed.bound - m.whole(), f.side1);
                     if now < cut {
-                        now = m.renewed(self.b1, self.b2, a, b, seed.bound, &axis, cut);
+                        (now, side1) = m.renewed(self.b1, self.b2, f, cut);
                     }
                     if now >= cut {
-                        self.pruned(&NodePair { bound: now, ..seed }, axis);
+                        let pair = NodePair { bound: now, ..seed };
+                        self.pruned_pair(FrontPair { pair, axis, side1 });
                         continue;
                     }
                 }
