@@ -1023,7 +1023,8 @@ fn split(recs: &mut [Record], keys: &mut [f64], median: bool) -> usize {
 /// model's kind (for the hybrid the kind that suits the points) and the box. The same as
 /// [`Ssv::fit`] and [`Obb::fit`], bit for bit, for less work: the points are taken into the frame
 /// once for all the fits (into `local`, scratch), and both volumes are covered in one pass that
-/// (above `SMALL_COVER` points) skips the points clearly inside both. `scale` is at least every point's `|p|_1`.
+/// (above `SMALL_COVER` points) skips the points clearly inside both. `scale` is at least every
+/// point's `|p|_1`.
 fn fit_volumes(
     volume: VolumeKind,
     axes: &Mat3,
