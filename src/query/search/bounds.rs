@@ -119,9 +119,8 @@ pub(crate) type Child = (NodePair, Vec3);
 
 /// The two children of the BVTT node `p` with their bounds (exact below `cutoff`, at least
 /// `cutoff` otherwise) and, with `axes`, their separating axes (see [`Child`]; zero without), or
-/// `None` for a pair of leaves. The descent rule: split model 1's node when model 2's is a leaf,
-/// model 2's when model 1's is, else the one with the larger volume (model 1's on a tie). Leaves'
-/// volumes (computed from their triangles) go through `leaves`.
+/// `None` for a pair of leaves. The side split is [`splits_first`]'s. Leaves' volumes (computed
+/// from their triangles) go through `leaves`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn expand(
@@ -135,16 +134,7 @@ pub(crate) fn expand(
     leaves: &mut LeafVolumes,
 ) -> Option<[Child; 2]> {
     let (a, b) = (p.a, p.b);
-    let split_first = if b.is_leaf() {
-        if a.is_leaf() {
-            return None;
-        }
-        true
-    } else if a.is_leaf() {
-        false
-    } else {
-        b1.inner_ssv_size(a) >= b2.inner_ssv_size(b)
-    };
+    let split_first = splits_first(b1, b2, a, b)?;
     // The fixed side is posed once, in the frame of the side being split; the children are read
     // where they lie (no copies).
     let pair = |a, b, (bound, axis)| (NodePair { a, b, bound }, axis);
@@ -167,6 +157,21 @@ pub(crate) fn expand(
     })
 }
 
+/// The descent rule: which node of the BVTT node (`a`, `b`) its expansion splits. `Some(true)`
+/// model 1's (when model 2's is a leaf, or when both are inner nodes and model 1's volume is at
+/// least as large as model 2's), `Some(false)` model 2's, `None` for a pair of leaves: the rule of
+/// `traversal::descend_first`, with the sizes the hierarchy stores. Written once for the search:
+/// [`expand`] follows it, and the prefetches ask for what it will read.
+#[inline(always)]
+pub(super) fn splits_first(b1: &Bvh, b2: &Bvh, a: NodeRef, b: NodeRef) -> Option<bool> {
+    match (a.is_leaf(), b.is_leaf()) {
+        (true, true) => None,
+        (false, true) => Some(true),
+        (true, false) => Some(false),
+        (false, false) => Some(b1.inner_ssv_size(a) >= b2.inner_ssv_size(b)),
+    }
+}
+
 /// Asks the processor to bring into the cache the volumes that expanding the BVTT node `p` will
 /// read: the children of the side the descent rule splits (a hint; nothing on other
 /// architectures, nor for a leaf child, whose volume comes from its triangle). For a node stacked
@@ -176,18 +181,12 @@ pub(crate) fn expand(
 pub(super) fn prefetch_children(b1: &Bvh, b2: &Bvh, p: &NodePair) {
     #[cfg(target_arch = "x86_64")]
     {
-        let (a, b) = (p.a, p.b);
-        // The descent rule of `expand`; both leaves: nothing to read.
-        let (model, node) = if b.is_leaf()
-            || !a.is_leaf() && !b.is_leaf() && { b1.inner_ssv_size(a) >= b2.inner_ssv_size(b) }
-        {
-            (b1, a)
-        } else {
-            (b2, b)
+        // Both leaves: nothing to read.
+        let (model, node) = match splits_first(b1, b2, p.a, p.b) {
+            None => return,
+            Some(true) => (b1, p.a),
+            Some(false) => (b2, p.b),
         };
-        if node.is_leaf() {
-            return;
-        }
         for c in model.children(node) {
             if !c.is_leaf() {
                 model.prefetch(c);
@@ -196,6 +195,26 @@ pub(super) fn prefetch_children(b1: &Bvh, b2: &Bvh, p: &NodePair) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (b1, b2, p);
+}
+
+/// For each child of the BVTT node `p` (by the descent rule, [`splits_first`]), asks for the
+/// volumes its own expansion will read (see [`prefetch_children`]): one level further ahead than
+/// the prefetch of a kept child, before the children's bounds are known.
+#[inline(always)]
+pub(super) fn prefetch_grandchildren(b1: &Bvh, b2: &Bvh, p: &NodePair) {
+    match splits_first(b1, b2, p.a, p.b) {
+        None => {}
+        Some(true) => {
+            for c in b1.children(p.a) {
+                prefetch_children(b1, b2, &NodePair { a: c, ..*p });
+            }
+        }
+        Some(false) => {
+            for c in b2.children(p.b) {
+                prefetch_children(b1, b2, &NodePair { b: c, ..*p });
+            }
+        }
+    }
 }
 
 /// The volume of node `r` of `b`, by reference: an inner node's where it lies, a leaf's through

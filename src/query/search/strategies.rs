@@ -4,8 +4,7 @@
 //! caller's stop rule says so.
 
 use super::ClosestSearch;
-use super::bounds::prefetch_children;
-use crate::bvh::Bvh;
+use super::bounds::{prefetch_children, prefetch_grandchildren};
 use crate::math::{Vec3, least};
 use crate::query::front::{FrontPair, Motion};
 use crate::query::queue::RadixQueue;
@@ -252,27 +251,6 @@ impl ClosestSearch<'_> {
             }
             queue.drain(|c| self.pruned(&c, Vec3::zeros()));
         });
-    }
-}
-
-/// For each child of the BVTT node `p` (by the descent rule of `expand`), asks for the volumes
-/// its own expansion will read (see [`prefetch_children`]): one level further ahead than the
-/// prefetch of a kept child, before the children's bounds are known.
-#[inline(always)]
-fn prefetch_grandchildren(b1: &Bvh, b2: &Bvh, p: &NodePair) {
-    let (a, b) = (p.a, p.b);
-    if a.is_leaf() && b.is_leaf() {
-        return;
-    }
-    let split_first = b.is_leaf() || !a.is_leaf() && b1.inner_ssv_size(a) >= b2.inner_ssv_size(b);
-    if split_first {
-        for c in b1.children(a) {
-            prefetch_children(b1, b2, &NodePair { a: c, ..*p });
-        }
-    } else {
-        for c in b2.children(b) {
-            prefetch_children(b1, b2, &NodePair { b: c, ..*p });
-        }
     }
 }
 
