@@ -50,7 +50,7 @@ impl ClosestSearch<'_> {
             if self.ahead {
                 prefetch_grandchildren(self.b1, self.b2, &p);
             }
-            if let Some([(x, _), (y, _)]) = self.visit_unordered(&p, cut, !loose) {
+            if let Some([(x, _), (y, _)]) = self.visit_unordered(&p, cut, !loose, &stop) {
                 // Nearer child on top; a child at or beyond the cutoff is pruned now (the cutoff
                 // only falls). Both without branches where no front is kept: either decision is
                 // a coin toss on most models, which a branch mispredicts.

@@ -75,13 +75,14 @@ impl ClosestSearch<'_> {
     /// As [`visit_unordered`](ClosestSearch::visit_unordered), the nearer child first.
     #[inline]
     pub(super) fn visit(&mut self, p: &NodePair, cutoff: f64, exact: bool) -> Option<[Child; 2]> {
-        self.visit_unordered(p, cutoff, exact).map(|[x, y]| {
-            if y.0.bound < x.0.bound {
-                [y, x]
-            } else {
-                [x, y]
-            }
-        })
+        self.visit_unordered(p, cutoff, exact, |_| false)
+            .map(|[x, y]| {
+                if y.0.bound < x.0.bound {
+                    [y, x]
+                } else {
+                    [x, y]
+                }
+            })
     }
 
     /// Visits one BVTT node: tests a leaf pair (`None`), or returns the node's two children with
@@ -90,19 +91,27 @@ impl ClosestSearch<'_> {
     /// Without `exact`, a leaf against a node of two leaves goes straight to its two triangle
     /// pairs, as if a leaf pair; against a node of a leaf and an inner node (when no front is
     /// kept), the leaf pair does, and the other child comes back with a placeholder at an
-    /// infinite bound for the second (see [`depth_first`](ClosestSearch::depth_first)).
+    /// infinite bound for the second (see [`depth_first`](ClosestSearch::depth_first)). There,
+    /// a first leaf pair after which `stop` ends the search leaves the rest of the node unvisited
+    /// (in the front, if one is kept, at the node's bound): a tolerance query's pair within the
+    /// tolerance.
     #[inline(always)]
     pub(super) fn visit_unordered(
         &mut self,
         p: &NodePair,
         cutoff: f64,
         exact: bool,
+        stop: impl Fn(f64) -> bool,
     ) -> Option<[Child; 2]> {
         if !exact {
             match leaf_children(self.b1, self.b2, p) {
                 LeafChildren::Both([x, y]) => {
                     self.leaf_pair(&x);
-                    self.leaf_pair(&y);
+                    if stop(self.best.d) {
+                        self.left(&y, Vec3::zeros());
+                    } else {
+                        self.leaf_pair(&y);
+                    }
                     return None;
                 }
                 LeafChildren::One(x, y) if self.front.is_none() => {
@@ -110,6 +119,9 @@ impl ClosestSearch<'_> {
                     // second child is a placeholder a depth-first search prunes (no front
                     // records it).
                     self.leaf_pair(&x);
+                    if stop(self.best.d) {
+                        return None;
+                    }
                     self.stats.bv_tests += 1;
                     let want = Want { axes: false, exact };
                     let c = self.bound_one(&y, cutoff, want);
