@@ -437,66 +437,51 @@ impl Bvh {
         let mut faces = with_room(tris)?;
         let mut ids = with_room(tris)?;
         let mut added = with_room(tris)?;
-        // Where the first share ends: in the nodes, the vertices, the triangles. One share (the
-        // first) takes everything of a small model.
-        let two = tris >= two_from;
-        let (kn, kv, kt) = if two {
-            let part =
-                |len: usize, twentieths: usize| len / 20 * twentieths + len % 20 * twentieths / 20;
-            (
-                part(inner, NODES_FIRST),
-                part(verts_len, REST_FIRST),
-                part(tris, REST_FIRST),
-            )
-        } else {
-            (inner, verts_len, tris)
-        };
-        let (nodes0, nodes1) = halves(&mut nodes, inner, kn);
-        let (boxes0, boxes1) = halves(&mut boxes, inner, kn);
-        let (children0, children1) = halves(&mut children, inner, kn);
-        let (verts0, verts1) = halves(&mut verts, verts_len, kv);
-        let (faces0, faces1) = halves(&mut faces, tris, kt);
-        let (ids0, ids1) = halves(&mut ids, tris, kt);
-        let (added0, added1) = halves(&mut added, tris, kt);
-        let first = Share {
-            nodes: &node_bytes[..kn * NODE],
-            verts: &vert_bytes[..kv * VERTEX],
-            faces: &face_bytes[..kt * 12],
-            ids: &id_bytes[..kt * 4],
-            added: &added_bytes[..kt * 4],
-            to_nodes: nodes0,
-            to_boxes: boxes0,
-            to_children: children0,
-            to_verts: verts0,
-            to_faces: faces0,
-            to_ids: ids0,
-            to_added: added0,
-        };
-        let second = Share {
-            nodes: &node_bytes[kn * NODE..],
-            verts: &vert_bytes[kv * VERTEX..],
-            faces: &face_bytes[kt * 12..],
-            ids: &id_bytes[kt * 4..],
-            added: &added_bytes[kt * 4..],
-            to_nodes: nodes1,
-            to_boxes: boxes1,
-            to_children: children1,
-            to_verts: verts1,
-            to_faces: faces1,
-            to_ids: ids1,
-            to_added: added1,
-        };
+        // The shares: each a run of 1/k of every section, in buffer order (one share for a
+        // small model).
+        let k = if tris >= two_from { SHARES } else { 1 };
+        let bounds = |len: usize| move |i: usize| len * i / k;
+        let (bn, bv, bt) = (bounds(inner), bounds(verts_len), bounds(tris));
+        let mut to_nodes = pieces(&mut nodes, inner, k).into_iter();
+        let mut to_boxes = pieces(&mut boxes, inner, k).into_iter();
+        let mut to_children = pieces(&mut children, inner, k).into_iter();
+        let mut to_verts = pieces(&mut verts, verts_len, k).into_iter();
+        let mut to_faces = pieces(&mut faces, tris, k).into_iter();
+        let mut to_ids = pieces(&mut ids, tris, k).into_iter();
+        let mut to_added = pieces(&mut added, tris, k).into_iter();
+        let mut shares = Vec::new();
+        shares
+            .try_reserve_exact(k)
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        for i in 0..k {
+            let (n0, n1, v0, v1, t0, t1) = (bn(i), bn(i + 1), bv(i), bv(i + 1), bt(i), bt(i + 1));
+            shares.push(Share {
+                nodes: &node_bytes[n0 * NODE..n1 * NODE],
+                verts: &vert_bytes[v0 * VERTEX..v1 * VERTEX],
+                faces: &face_bytes[t0 * 12..t1 * 12],
+                ids: &id_bytes[t0 * 4..t1 * 4],
+                added: &added_bytes[t0 * 4..t1 * 4],
+                to_nodes: to_nodes.next().ok_or(Error::Internal)?,
+                to_boxes: to_boxes.next().ok_or(Error::Internal)?,
+                to_children: to_children.next().ok_or(Error::Internal)?,
+                to_verts: to_verts.next().ok_or(Error::Internal)?,
+                to_faces: to_faces.next().ok_or(Error::Internal)?,
+                to_ids: to_ids.next().ok_or(Error::Internal)?,
+                to_added: to_added.next().ok_or(Error::Internal)?,
+            });
+        }
         let read = |_: &mut (), s: Share<'_>| read_share(s, volume, v, n);
-        let found = if two {
-            // This thread takes the first task, the second share (it has the join and the tree
-            // walk after it); a started thread the first share, the larger. Each first touches
-            // the memory it writes, so the kernel's page zeroing is shared between the cores too.
-            // Should the thread not start (or start late), this one reads both.
-            let mut found = run_tasks(2, vec![second, first], read, || Ok(()))?;
-            found.swap(0, 1);
-            found
+        let found = if k > 1 {
+            // This thread and a started one take the shares in turn as they finish one, so
+            // neither waits long for the other (nor for a thread the system is slow to run, or
+            // does not start: this one then reads them all). Each first touches the memory it
+            // writes, so the kernel's page zeroing is shared between the cores too.
+            run_tasks(2, shares, read, || Ok(()))?
         } else {
-            vec![read(&mut (), first)?, read(&mut (), second)?]
+            shares
+                .into_iter()
+                .map(|s| read(&mut (), s))
+                .collect::<Result<Vec<_>, _>>()?
         };
         // The checksum, the pieces joined in the buffer's order.
         let mut sum = Fletcher64::default();
@@ -523,11 +508,18 @@ impl Bvh {
         }
         // The order added: each share's values distinct and below n, and no value in both
         // shares, so n distinct values below n, a permutation.
-        let (a0, a1) = (&found[0].added, &found[1].added);
-        if a0.iter().zip(a1).any(|(x, y)| x & y != 0) {
-            return Err(bad);
+        if let Some((first, others)) = found.split_first() {
+            let mut all = first.added.clone();
+            for f in others {
+                for (a, x) in all.iter_mut().zip(&f.added) {
+                    if *a & x != 0 {
+                        return Err(bad);
+                    }
+                    *a |= x;
+                }
+            }
         }
-        // SAFETY: the two shares' slots partition the first `len` of each vector's capacity
+        // SAFETY: the shares' slots partition the first `len` of each vector's capacity
         // (`halves`), and both shares returned `Ok`, which `read_share` does only after writing
         // every one of its slots.
         unsafe {
@@ -541,8 +533,8 @@ impl Bvh {
         }
         check_tree(&children, tris)?;
         drop(children);
-        let inner_scale = f64::max(found[0].inner_scale, found[1].inner_scale);
-        let vertex_scale = f64::max(found[0].vertex_scale, found[1].vertex_scale);
+        let inner_scale = found.iter().map(|f| f.inner_scale).fold(0.0, f64::max);
+        let vertex_scale = found.iter().map(|f| f.vertex_scale).fold(0.0, f64::max);
         // As `Bvh::scale_bound` and `Bvh::has_tiny` compute them: no triangle is tiny without a
         // tiny vertex (the common case, which needs no pass over the faces).
         let scale = inner_scale.max(5.0 * vertex_scale);
@@ -559,21 +551,22 @@ impl Bvh {
 /// Fewest triangles for which a load runs on two threads (under it, starting a thread costs about
 /// as much as it saves).
 const TWO_THREADS: usize = 16_384;
-/// Twentieths of the inner nodes the first share (a started thread) reads, and of the vertices
-/// and triangles: this thread, with the second share, then joins the two and walks the tree.
-const NODES_FIRST: usize = 13;
-const REST_FIRST: usize = 13;
+/// Shares of a load on two threads: each thread takes the next as it finishes one.
+const SHARES: usize = 8;
 /// Records summed at a time before they are read (while they are in cache).
 const PIECE: usize = 256;
 
-/// The first `len` slots of `v`'s capacity, split at `k`.
-#[allow(clippy::type_complexity)]
-fn halves<T>(
-    v: &mut Vec<T>,
-    len: usize,
-    k: usize,
-) -> (&mut [MaybeUninit<T>], &mut [MaybeUninit<T>]) {
-    v.spare_capacity_mut()[..len].split_at_mut(k)
+/// The first `len` slots of `v`'s capacity in `k` runs, their lengths differing by at most one
+/// (as `len * i / k` splits them).
+fn pieces<T>(v: &mut Vec<T>, len: usize, k: usize) -> Vec<&mut [MaybeUninit<T>]> {
+    let mut rest = &mut v.spare_capacity_mut()[..len];
+    let mut out = Vec::with_capacity(k);
+    for i in 0..k {
+        let (piece, r) = std::mem::take(&mut rest).split_at_mut(len * (i + 1) / k - len * i / k);
+        out.push(piece);
+        rest = r;
+    }
+    out
 }
 
 /// One thread's share of a load: a run of the records of each section, and the slots they go to
@@ -1077,15 +1070,13 @@ mod tests {
         let verts = nodes + (n - 1) * NODE;
         let faces = verts + v * VERTEX;
         let added = faces + n * TRIANGLE - 4 * n;
-        // The shares' boundaries, and records on either side.
-        let (kn, kt) = ((n - 1) * NODES_FIRST / 20, n * REST_FIRST / 20);
-        for (k, t) in [
-            (0, 0),
-            (kn - 1, kt - 1),
-            (kn, kt),
-            (n - 2, n - 1),
-            (kn / 2, kt / 2),
-        ] {
+        // Records on either side of each boundary between shares, and in the middle of one.
+        let mut at = vec![(0, 0), (n - 2, n - 1), ((n - 1) / 16, n / 16)];
+        for i in 1..SHARES {
+            let (kn, kt) = ((n - 1) * i / SHARES, n * i / SHARES);
+            at.extend([(kn - 1, kt - 1), (kn, kt)]);
+        }
+        for (k, t) in at {
             let cases: Vec<Change> = vec![
                 // A node value out of range, a child out of range, the root as a child.
                 Box::new(move |b| {
