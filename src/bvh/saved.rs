@@ -8,7 +8,9 @@
 //! misuse: indices in range, a tree whose leaves are the triangles in slot order (each node
 //! reached once from the root), depth within [`MAX_DEPTH`] (the queries' fixed stacks), finite
 //! coordinates within range, consistent counts. Derived values (`scale`, `tiny`, each node's
-//! volume size) are not stored but recomputed, bit for bit as the build computed them.
+//! volume size) are not stored but recomputed, bit for bit as the build computed them. A model of
+//! [`TWO_THREADS`] triangles or more is read on two threads, in shares of every section whose
+//! checks and checksum sums are joined afterwards (the same checks, the same verdict).
 //!
 //! What reading does not check is that each volume encloses its triangles: that costs as much as a
 //! build, which loading exists to avoid. The checksum catches accidental damage; a buffer crafted
@@ -471,7 +473,7 @@ impl Bvh {
             });
         }
         let read = |_: &mut (), s: Share<'_>| read_share(s, volume, v, n);
-        let found = if k > 1 {
+        let mut found = if k > 1 {
             // This thread and a started one take the shares in turn as they finish one, so
             // neither waits long for the other (nor for a thread the system is slow to run, or
             // does not start: this one then reads them all). Each first touches the memory it
@@ -508,15 +510,18 @@ impl Bvh {
         }
         // The order added: each share's values distinct and below n, and no value in both
         // shares, so n distinct values below n, a permutation.
-        if let Some((first, others)) = found.split_first() {
-            let mut all = first.added.clone();
-            for f in others {
-                for (a, x) in all.iter_mut().zip(&f.added) {
-                    if *a & x != 0 {
-                        return Err(bad);
-                    }
-                    *a |= x;
+        // (A share without triangles has no set: the first set met is the start.)
+        let mut all: Vec<u64> = Vec::new();
+        for f in &mut found {
+            if all.is_empty() {
+                all = std::mem::take(&mut f.added);
+                continue;
+            }
+            for (a, x) in all.iter_mut().zip(&f.added) {
+                if *a & x != 0 {
+                    return Err(bad);
                 }
+                *a |= x;
             }
         }
         // SAFETY: the shares' slots partition the first `len` of each vector's capacity
@@ -1022,6 +1027,21 @@ mod tests {
             assert_eq!(v, volume);
             assert_same(&b, &one);
             assert_same(&b, &two);
+            // A value of the order added repeated, in the same share or another (some shares
+            // of a small model have no triangles).
+            let added = bytes.len() - TRAILER - 4 * n;
+            for (i, j) in [(0, 1), (0, n - 1), (n / 2, n - 1), (1, 0), (n - 1, 0)] {
+                if i != j {
+                    let bad = saved_with(&b, volume, |x| {
+                        let w = u32_at(x, added + 4 * i);
+                        x[added + 4 * j..][..4].copy_from_slice(&w.to_le_bytes());
+                    });
+                    for two_from in [1, usize::MAX] {
+                        let r = Bvh::load_with(&bad, two_from);
+                        assert_eq!(r.err(), Some(Error::InvalidData), "{n} {i} {j}");
+                    }
+                }
+            }
             // One word changed anywhere (in either share, the header or the trailer): refused
             // by both, the checksum left as it is or made to match.
             let size = bytes.len();
