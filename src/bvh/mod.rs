@@ -354,6 +354,26 @@ impl Bvh {
     ) -> Bvh {
         let scale = Bvh::scale_bound(inner_scale, &verts);
         let tiny = Bvh::has_tiny(&verts, &faces);
+        Bvh::assembled(
+            nodes, boxes, verts, faces, ids, added, collision, scale, tiny, shared,
+        )
+    }
+
+    /// [`Bvh::assemble`] with `scale` ([`Bvh::scale_bound`]) and `tiny` ([`Bvh::has_tiny`])
+    /// already computed (a load takes them as it reads the vertices, in no extra pass).
+    #[allow(clippy::too_many_arguments)]
+    fn assembled(
+        nodes: Vec<Node>,
+        boxes: Vec<NodeBox>,
+        verts: Vec<Vec3>,
+        faces: Vec<[u32; 3]>,
+        ids: Vec<i32>,
+        added: Vec<u32>,
+        collision: CollisionVolume,
+        scale: f64,
+        tiny: bool,
+        shared: bool,
+    ) -> Bvh {
         let distinct = if shared {
             OnceLock::from(!has_negative_zero(&verts))
         } else {

@@ -8,17 +8,22 @@
 //! misuse: indices in range, a tree whose leaves are the triangles in slot order (each node
 //! reached once from the root), depth within [`MAX_DEPTH`] (the queries' fixed stacks), finite
 //! coordinates within range, consistent counts. Derived values (`scale`, `tiny`, each node's
-//! volume size) are not stored but recomputed, bit for bit as the build computed them.
+//! volume size) are not stored but recomputed, bit for bit as the build computed them. A model of
+//! [`TWO_THREADS`] triangles or more is read on two threads, in shares of every section whose
+//! checks and checksum sums are joined afterwards (the same checks, the same verdict).
 //!
 //! What reading does not check is that each volume encloses its triangles: that costs as much as a
 //! build, which loading exists to avoid. The checksum catches accidental damage; a buffer crafted
 //! with wrong volumes and a matching checksum gives a model that is memory-safe and whose queries
 //! end, but whose answers may be wrong.
 
+use super::build_threads::run_tasks;
 use super::{Bvh, CollisionVolume, MAX_DEPTH, Node, NodeBox, NodeKind, NodeRef, VolumeKind};
 use crate::bounding_volume::{BoundingVolume, CompactSsv};
 use crate::error::{Error, MAX_COORDINATE};
+use crate::geometry::RESCALE_LO;
 use crate::math::Vec3;
+use std::mem::MaybeUninit;
 
 /// The first eight bytes of every saved model.
 const MAGIC: [u8; 8] = *b"PQPMODEL";
@@ -65,6 +70,39 @@ pub(crate) struct Fletcher64 {
     b: u64,
     /// Words added since the sums were last reduced.
     words: usize,
+    /// Words added in all.
+    total: u64,
+}
+
+/// The two sums of [`fletcher64`] over one piece of a buffer (reduced), and the piece's length in
+/// words: pieces summed apart (on two threads) are joined by [`Sums::then`] into the sums of the
+/// whole.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Sums {
+    a: u64,
+    b: u64,
+    words: u64,
+}
+
+impl Sums {
+    /// The sums of this piece followed by `next`, exactly as if summed in one go. Over `next`'s
+    /// `m` words, `a` grows by their sum (`next.a`), and `b`, which adds the running `a` after
+    /// each word, by `next.b` plus `m` times the `a` it started from.
+    pub(crate) fn then(self, next: Sums) -> Sums {
+        let m = Fletcher64::MODULUS;
+        // Each term is below 2^32 - 1, the product below 2^64.
+        let carried = (next.words % m) * self.a % m;
+        Sums {
+            a: (self.a + next.a) % m,
+            b: (self.b + next.b + carried) % m,
+            words: self.words + next.words,
+        }
+    }
+
+    /// The checksum ([`Fletcher64::finish`]).
+    pub(crate) fn finish(self) -> u64 {
+        (self.b << 32) | self.a
+    }
 }
 
 impl Fletcher64 {
@@ -86,6 +124,9 @@ impl Fletcher64 {
             let octets = head.chunks_exact(32);
             let single = octets.remainder();
             for o in octets {
+                // 1 KiB ahead (the processor's stream prefetch alone leaves the sum waiting on
+                // memory: 27 ms for 184 MB without, 19-20 with); a hint, also past the end.
+                crate::math::prefetch_line(o.as_ptr().wrapping_add(1024));
                 let (mut s, mut t) = (0u64, 0u64);
                 for (k, w) in o.chunks_exact(4).enumerate() {
                     let w = u64::from(u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
@@ -100,6 +141,7 @@ impl Fletcher64 {
                 b += a;
             }
             self.words += whole;
+            self.total += whole as u64;
             rest = tail;
             if whole == 0 {
                 let mut w = [0u8; 4];
@@ -107,6 +149,7 @@ impl Fletcher64 {
                 a += u64::from(u32::from_le_bytes(w));
                 b += a;
                 self.words += 1;
+                self.total += 1;
                 rest = &[];
             }
             if self.words == Self::BLOCK {
@@ -118,25 +161,17 @@ impl Fletcher64 {
 
     /// The checksum of everything added.
     pub(crate) fn finish(&self) -> u64 {
-        ((self.b % Self::MODULUS) << 32) | (self.a % Self::MODULUS)
+        self.sums().finish()
     }
-}
 
-/// Calls `read` on each `size`-byte record of a section, in order, adding each piece of 256
-/// records to `sum` just before they are read (while it is in cache); stops at the first error.
-fn for_records(
-    section: &[u8],
-    size: usize,
-    sum: &mut Fletcher64,
-    mut read: impl FnMut(&[u8]) -> Result<(), Error>,
-) -> Result<(), Error> {
-    for piece in section.chunks(256 * size) {
-        sum.update(piece);
-        for r in piece.chunks_exact(size) {
-            read(r)?;
+    /// The sums of everything added, to join with others' ([`Sums::then`]).
+    pub(crate) fn sums(&self) -> Sums {
+        Sums {
+            a: self.a % Self::MODULUS,
+            b: self.b % Self::MODULUS,
+            words: self.total,
         }
     }
-    Ok(())
 }
 
 /// The codes of the volume choices in the header (PQP_BV_* and PQP_COLLIDE_* of the C ABI).
@@ -356,6 +391,11 @@ impl Bvh {
     /// `Err(ModelOutOfMemory)` if its storage could not be allocated. Allocations are sized from
     /// counts already checked against the length of `bytes`.
     pub fn load(bytes: &[u8]) -> Result<(Bvh, VolumeKind), Error> {
+        Bvh::load_with(bytes, TWO_THREADS)
+    }
+
+    /// [`load`](Bvh::load), on two threads from `two_from` triangles.
+    fn load_with(bytes: &[u8], two_from: usize) -> Result<(Bvh, VolumeKind), Error> {
         let bad = Error::InvalidData;
         if bytes.len() < HEADER + TRAILER || bytes[..8] != MAGIC || u32_at(bytes, 8) != VERSION {
             return Err(bad);
@@ -382,11 +422,8 @@ impl Bvh {
             return Err(bad);
         }
         // Every section now fits: the counts are bounded by the buffer's length, and so is every
-        // allocation below. The checksum is taken as the sections are read, and compared before
-        // anything is made of them.
+        // allocation below.
         let (body, trailer) = bytes.split_at(bytes.len() - TRAILER);
-        let mut sum = Fletcher64::default();
-        sum.update(&body[..HEADER]);
         let mut rest = &body[HEADER..];
         let mut section = |size: u64| {
             let (s, r) = rest.split_at(size as usize);
@@ -394,101 +431,348 @@ impl Bvh {
             s
         };
         let [node_bytes, vert_bytes, face_bytes, id_bytes, added_bytes] = sizes.map(&mut section);
-        let (nodes, boxes, children, inner_scale) = read_nodes(node_bytes, volume, &mut sum)?;
-        let verts = read_verts(vert_bytes, &mut sum)?;
-        let faces = read_faces(face_bytes, v, &mut sum)?;
-        let mut ids = with_room(n as usize)?;
-        for_records(id_bytes, 4, &mut sum, |w| {
-            ids.push(u32_at(w, 0) as i32);
-            Ok(())
-        })?;
-        let added = read_added(added_bytes, n, &mut sum)?;
-        if sum.finish() != u64_at(trailer, 0) {
+        let (tris, inner, verts_len) = (n as usize, n as usize - 1, v as usize);
+        let mut nodes = with_room(inner)?;
+        let mut boxes = with_room(inner)?;
+        let mut children = with_room(inner)?;
+        let mut verts = with_room(verts_len)?;
+        let mut faces = with_room(tris)?;
+        let mut ids = with_room(tris)?;
+        let mut added = with_room(tris)?;
+        // The shares: each a run of 1/k of every section, in buffer order (one share for a
+        // small model).
+        let k = if tris >= two_from { SHARES } else { 1 };
+        let bounds = |len: usize| move |i: usize| len * i / k;
+        let (bn, bv, bt) = (bounds(inner), bounds(verts_len), bounds(tris));
+        let mut to_nodes = pieces(&mut nodes, inner, k).into_iter();
+        let mut to_boxes = pieces(&mut boxes, inner, k).into_iter();
+        let mut to_children = pieces(&mut children, inner, k).into_iter();
+        let mut to_verts = pieces(&mut verts, verts_len, k).into_iter();
+        let mut to_faces = pieces(&mut faces, tris, k).into_iter();
+        let mut to_ids = pieces(&mut ids, tris, k).into_iter();
+        let mut to_added = pieces(&mut added, tris, k).into_iter();
+        let mut shares = Vec::new();
+        shares
+            .try_reserve_exact(k)
+            .map_err(|_| Error::ModelOutOfMemory)?;
+        for i in 0..k {
+            let (n0, n1, v0, v1, t0, t1) = (bn(i), bn(i + 1), bv(i), bv(i + 1), bt(i), bt(i + 1));
+            shares.push(Share {
+                nodes: &node_bytes[n0 * NODE..n1 * NODE],
+                verts: &vert_bytes[v0 * VERTEX..v1 * VERTEX],
+                faces: &face_bytes[t0 * 12..t1 * 12],
+                ids: &id_bytes[t0 * 4..t1 * 4],
+                added: &added_bytes[t0 * 4..t1 * 4],
+                to_nodes: to_nodes.next().ok_or(Error::Internal)?,
+                to_boxes: to_boxes.next().ok_or(Error::Internal)?,
+                to_children: to_children.next().ok_or(Error::Internal)?,
+                to_verts: to_verts.next().ok_or(Error::Internal)?,
+                to_faces: to_faces.next().ok_or(Error::Internal)?,
+                to_ids: to_ids.next().ok_or(Error::Internal)?,
+                to_added: to_added.next().ok_or(Error::Internal)?,
+            });
+        }
+        let read = |_: &mut (), s: Share<'_>| read_share(s, volume, v, n);
+        let mut found = if k > 1 {
+            // This thread and a started one take the shares in turn as they finish one, so
+            // neither waits long for the other (nor for a thread the system is slow to run, or
+            // does not start: this one then reads them all). Each first touches the memory it
+            // writes, so the kernel's page zeroing is shared between the cores too.
+            run_tasks(2, shares, read, || Ok(()))?
+        } else {
+            shares
+                .into_iter()
+                .map(|s| read(&mut (), s))
+                .collect::<Result<Vec<_>, _>>()?
+        };
+        // The checksum, the pieces joined in the buffer's order.
+        let mut sum = Fletcher64::default();
+        sum.update(&body[..HEADER]);
+        let mut sums = sum.sums();
+        for k in 0..5 {
+            for f in &found {
+                sums = sums.then(f.sums[k]);
+            }
+        }
+        if sums.finish() != u64_at(trailer, 0) {
             return Err(bad);
         }
-        check_tree(&children, n as usize)?;
+        // The faces' numbering across the shares, and every vertex used.
+        let mut seen = 0u32;
+        for f in &found {
+            if f.past > seen {
+                return Err(bad);
+            }
+            seen = seen.max(f.seen);
+        }
+        if seen != v {
+            return Err(bad);
+        }
+        // The order added: each share's values distinct and below n, and no value in both
+        // shares, so n distinct values below n, a permutation.
+        // (A share without triangles has no set: the first set met is the start.)
+        let mut all: Vec<u64> = Vec::new();
+        for f in &mut found {
+            if all.is_empty() {
+                all = std::mem::take(&mut f.added);
+                continue;
+            }
+            for (a, x) in all.iter_mut().zip(&f.added) {
+                if *a & x != 0 {
+                    return Err(bad);
+                }
+                *a |= x;
+            }
+        }
+        // SAFETY: the shares' slots partition the first `len` of each vector's capacity
+        // (`halves`), and both shares returned `Ok`, which `read_share` does only after writing
+        // every one of its slots.
+        unsafe {
+            nodes.set_len(inner);
+            boxes.set_len(inner);
+            children.set_len(inner);
+            verts.set_len(verts_len);
+            faces.set_len(tris);
+            ids.set_len(tris);
+            added.set_len(tris);
+        }
+        check_tree(&children, tris)?;
         drop(children);
+        let inner_scale = found.iter().map(|f| f.inner_scale).fold(0.0, f64::max);
+        let vertex_scale = found.iter().map(|f| f.vertex_scale).fold(0.0, f64::max);
+        // As `Bvh::scale_bound` and `Bvh::has_tiny` compute them: no triangle is tiny without a
+        // tiny vertex (the common case, which needs no pass over the faces).
+        let scale = inner_scale.max(5.0 * vertex_scale);
+        let tiny = found.iter().any(|f| f.tiny_vertex) && Bvh::has_tiny(&verts, &faces);
         Ok((
-            Bvh::assemble(
-                nodes,
-                boxes,
-                verts,
-                faces,
-                ids,
-                added,
-                collision,
-                inner_scale,
-                false,
+            Bvh::assembled(
+                nodes, boxes, verts, faces, ids, added, collision, scale, tiny, false,
             ),
             volume,
         ))
     }
 }
 
-/// What [`read_nodes`] gives: the nodes, their boxes, their children apart, and the largest scale
-/// of their swept sphere volumes ([`Bvh::inner_scale`]).
-type Nodes = (Vec<Node>, Vec<NodeBox>, Vec<[NodeRef; 2]>, f64);
+/// Fewest triangles for which a load runs on two threads (under it, starting a thread costs about
+/// as much as it saves).
+const TWO_THREADS: usize = 16_384;
+/// Shares of a load on two threads: each thread takes the next as it finishes one.
+const SHARES: usize = 8;
+/// Records summed at a time before they are read (while they are in cache).
+const PIECE: usize = 256;
 
-/// The inner nodes, each checked on its own: values finite and within [`MAX_NODE_VALUE`], lengths,
-/// radius and half extents not negative, lengths as the model's volume kind allows, axes
-/// orthonormal. The children, also given apart for [`check_tree`] (a walk over them alone touches
-/// 8 bytes a node where the nodes are 112), are checked there.
-fn read_nodes(bytes: &[u8], volume: VolumeKind, sum: &mut Fletcher64) -> Result<Nodes, Error> {
-    let mut nodes = with_room(bytes.len() / NODE)?;
-    let mut boxes = with_room(bytes.len() / NODE)?;
-    let mut children = with_room(bytes.len() / NODE)?;
-    let mut inner_scale = 0.0;
-    for_records(bytes, NODE, sum, |b| {
-        let mut f = [0.0f64; 18];
-        for (x, w) in f.iter_mut().zip(b.chunks_exact(8)) {
-            *x = f64_at(w, 0);
+/// The first `len` slots of `v`'s capacity in `k` runs, their lengths differing by at most one
+/// (as `len * i / k` splits them).
+fn pieces<T>(v: &mut Vec<T>, len: usize, k: usize) -> Vec<&mut [MaybeUninit<T>]> {
+    let mut rest = &mut v.spare_capacity_mut()[..len];
+    let mut out = Vec::with_capacity(k);
+    for i in 0..k {
+        let (piece, r) = std::mem::take(&mut rest).split_at_mut(len * (i + 1) / k - len * i / k);
+        out.push(piece);
+        rest = r;
+    }
+    out
+}
+
+/// One thread's share of a load: a run of the records of each section, and the slots they go to
+/// (as many as the records).
+struct Share<'a> {
+    nodes: &'a [u8],
+    verts: &'a [u8],
+    faces: &'a [u8],
+    ids: &'a [u8],
+    added: &'a [u8],
+    to_nodes: &'a mut [MaybeUninit<Node>],
+    to_boxes: &'a mut [MaybeUninit<NodeBox>],
+    to_children: &'a mut [MaybeUninit<[NodeRef; 2]>],
+    to_verts: &'a mut [MaybeUninit<Vec3>],
+    to_faces: &'a mut [MaybeUninit<[u32; 3]>],
+    to_ids: &'a mut [MaybeUninit<i32>],
+    to_added: &'a mut [MaybeUninit<u32>],
+}
+
+/// What a share found, for the checks across shares.
+#[derive(Default)]
+struct Found {
+    /// The checksum's sums of its piece of each section.
+    sums: [Sums; 5],
+    /// The largest scale of its nodes' swept sphere volumes ([`Bvh::inner_scale`]).
+    inner_scale: f64,
+    /// The largest `|x| + |y| + |z|` of its vertices (as [`Bvh::scale_bound`] folds it).
+    vertex_scale: f64,
+    /// Some vertex of it has every coordinate below `RESCALE_LO` in magnitude.
+    tiny_vertex: bool,
+    /// Its faces' vertex indices: one more than the largest (0 if none), and the largest index
+    /// that was more than one past the largest before it in the share (0 if none), which the
+    /// shares before must have reached.
+    seen: u32,
+    past: u32,
+    /// Its part of the order added as a set of bits (empty without one).
+    added: Vec<u64>,
+}
+
+/// Reads a share: every record checked on its own (see the file's documentation), written to its
+/// slot, and summed; `Ok` only once every slot is written.
+fn read_share(s: Share<'_>, volume: VolumeKind, v: u32, n: u32) -> Result<Found, Error> {
+    let inner = s.to_nodes.len();
+    let tris = s.to_faces.len();
+    let sized = s.nodes.len() == inner * NODE
+        && s.to_boxes.len() == inner
+        && s.to_children.len() == inner
+        && s.verts.len() == s.to_verts.len() * VERTEX
+        && s.faces.len() == tris * 12
+        && s.ids.len() == tris * 4
+        && s.to_ids.len() == tris
+        && s.added.len() == tris * 4
+        && s.to_added.len() == tris;
+    if !sized {
+        return Err(Error::Internal);
+    }
+    let mut found = Found::default();
+    let mut sum = Fletcher64::default();
+    let slots = s
+        .to_nodes
+        .chunks_mut(PIECE)
+        .zip(s.to_boxes.chunks_mut(PIECE));
+    let slots = slots.zip(s.to_children.chunks_mut(PIECE));
+    for (piece, ((to_n, to_b), to_c)) in s.nodes.chunks(PIECE * NODE).zip(slots) {
+        sum.update(piece);
+        let slots = to_n.iter_mut().zip(to_b.iter_mut()).zip(to_c.iter_mut());
+        for (r, ((to_n, to_b), to_c)) in piece.chunks_exact(NODE).zip(slots) {
+            let (node, b) = read_node(r, volume)?;
+            // As `Bvh::inner_scale` folds it.
+            found.inner_scale = f64::max(found.inner_scale, node.ssv.scale());
+            to_c.write(node.children);
+            to_n.write(node);
+            to_b.write(b);
         }
-        // NaN fails the comparison too.
-        if !f.iter().all(|x| x.abs() <= MAX_NODE_VALUE) {
+    }
+    found.sums[0] = sum.sums();
+
+    let (mut vertex_scale, mut tiny_vertex) = (0.0, false);
+    found.sums[1] = fill(s.verts, VERTEX, s.to_verts, |b| {
+        let p = Vec3::new(f64_at(b, 0), f64_at(b, 8), f64_at(b, 16));
+        // Finite and within range, as `add_triangle` accepts (NaN fails the comparison too).
+        if !p.iter().all(|x| x.abs() <= MAX_COORDINATE) {
             return Err(Error::InvalidData);
         }
-        let vec = |k: usize| Vec3::new(f[k], f[k + 1], f[k + 2]);
-        let ssv = CompactSsv {
-            axes: [vec(0), vec(3)],
-            origin: vec(6),
-            lengths: [f[9], f[10]],
-            radius: f[11],
-        };
-        let (center, half) = (vec(12), vec(15));
-        let [u, v] = ssv.axes;
-        let near = |x: f64, want: f64| (x - want).abs() <= FRAME_TOLERANCE;
-        let allowed_lengths = match volume {
-            VolumeKind::Pss => ssv.lengths == [0.0, 0.0],
-            VolumeKind::Lss => ssv.lengths[1] == 0.0,
-            VolumeKind::Rss | VolumeKind::Hybrid => true,
-        };
-        let valid = near(u.norm_squared(), 1.0)
-            && near(v.norm_squared(), 1.0)
-            && near(u.dot(&v), 0.0)
-            && ssv.lengths[0] >= 0.0
-            && ssv.lengths[1] >= 0.0
-            && ssv.radius >= 0.0
-            && half.iter().all(|&h| h >= 0.0)
-            && allowed_lengths;
-        if !valid {
-            return Err(Error::InvalidData);
+        vertex_scale = f64::max(vertex_scale, p.abs().sum());
+        tiny_vertex |= p.amax() < RESCALE_LO;
+        Ok(p)
+    })?;
+    (found.vertex_scale, found.tiny_vertex) = (vertex_scale, tiny_vertex);
+
+    // The vertices are numbered as they first appear in the faces: each index at most one more
+    // than the largest before it (`seen` is that largest plus one), all below `v`. Within a
+    // share, the largest index before it is not known: an index more than one past the share's
+    // own largest is kept (`past`) for the join to check against the shares before.
+    let (mut seen, mut past) = (0u32, 0u32);
+    found.sums[2] = fill(s.faces, 12, s.to_faces, |b| {
+        let f = [u32_at(b, 0), u32_at(b, 4), u32_at(b, 8)];
+        for k in f {
+            if k >= v {
+                return Err(Error::InvalidData);
+            }
+            past = past.max(if k > seen { k } else { 0 });
+            seen = seen.max(k + 1);
         }
-        let kids = [
-            NodeRef(u32_at(b, 144) as i32),
-            NodeRef(u32_at(b, 148) as i32),
-        ];
-        // As `Bvh::inner_scale` folds it.
-        inner_scale = f64::max(inner_scale, ssv.scale());
-        nodes.push(Node {
+        Ok(f)
+    })?;
+    (found.seen, found.past) = (seen, past);
+
+    found.sums[3] = fill(s.ids, 4, s.to_ids, |b| Ok(u32_at(b, 0) as i32))?;
+
+    // The order added: values below `n`, none twice in the share.
+    if !s.added.is_empty() {
+        let words = (n as usize).div_ceil(64);
+        let mut bits: Vec<u64> = with_room(words)?;
+        bits.resize(words, 0);
+        found.sums[4] = fill(s.added, 4, s.to_added, |b| {
+            let k = u32_at(b, 0);
+            if k >= n {
+                return Err(Error::InvalidData);
+            }
+            let (word, bit) = ((k / 64) as usize, 1u64 << (k % 64));
+            if bits[word] & bit != 0 {
+                return Err(Error::InvalidData);
+            }
+            bits[word] |= bit;
+            Ok(k)
+        })?;
+        found.added = bits;
+    }
+    Ok(found)
+}
+
+/// Writes `read` of each `size`-byte record of `section` to the slot of the same rank in `out`
+/// (as many), summing each piece of [`PIECE`] records just before reading it (while it is in
+/// cache); the sums of the section, or the first error.
+fn fill<T>(
+    section: &[u8],
+    size: usize,
+    out: &mut [MaybeUninit<T>],
+    mut read: impl FnMut(&[u8]) -> Result<T, Error>,
+) -> Result<Sums, Error> {
+    let mut sum = Fletcher64::default();
+    for (piece, slots) in section.chunks(PIECE * size).zip(out.chunks_mut(PIECE)) {
+        sum.update(piece);
+        for (r, slot) in piece.chunks_exact(size).zip(slots) {
+            slot.write(read(r)?);
+        }
+    }
+    Ok(sum.sums())
+}
+
+/// An inner node and its box, checked on its own: values finite and within [`MAX_NODE_VALUE`],
+/// lengths, radius and half extents not negative, lengths as the model's volume kind allows, axes
+/// orthonormal. Its children are checked by [`check_tree`].
+fn read_node(b: &[u8], volume: VolumeKind) -> Result<(Node, NodeBox), Error> {
+    let mut f = [0.0f64; 18];
+    for (x, w) in f.iter_mut().zip(b.chunks_exact(8)) {
+        *x = f64_at(w, 0);
+    }
+    // NaN fails the comparison too.
+    if !f.iter().all(|x| x.abs() <= MAX_NODE_VALUE) {
+        return Err(Error::InvalidData);
+    }
+    let vec = |k: usize| Vec3::new(f[k], f[k + 1], f[k + 2]);
+    let ssv = CompactSsv {
+        axes: [vec(0), vec(3)],
+        origin: vec(6),
+        lengths: [f[9], f[10]],
+        radius: f[11],
+    };
+    let (center, half) = (vec(12), vec(15));
+    let [u, v] = ssv.axes;
+    let near = |x: f64, want: f64| (x - want).abs() <= FRAME_TOLERANCE;
+    let allowed_lengths = match volume {
+        VolumeKind::Pss => ssv.lengths == [0.0, 0.0],
+        VolumeKind::Lss => ssv.lengths[1] == 0.0,
+        VolumeKind::Rss | VolumeKind::Hybrid => true,
+    };
+    let valid = near(u.norm_squared(), 1.0)
+        && near(v.norm_squared(), 1.0)
+        && near(u.dot(&v), 0.0)
+        && ssv.lengths[0] >= 0.0
+        && ssv.lengths[1] >= 0.0
+        && ssv.radius >= 0.0
+        && half.iter().all(|&h| h >= 0.0)
+        && allowed_lengths;
+    if !valid {
+        return Err(Error::InvalidData);
+    }
+    let children = [
+        NodeRef(u32_at(b, 144) as i32),
+        NodeRef(u32_at(b, 148) as i32),
+    ];
+    Ok((
+        Node {
             ssv_size: ssv.full().size(),
             ssv,
-            children: kids,
-        });
-        boxes.push(NodeBox { center, half });
-        children.push(kids);
-        Ok(())
-    })?;
-    Ok((nodes, boxes, children, inner_scale))
+            children,
+        },
+        NodeBox { center, half },
+    ))
 }
 
 /// Checks that the inner nodes' `children` make the tree a build makes over `n` triangles (`n - 1`
@@ -547,65 +831,6 @@ fn check_tree(children: &[[NodeRef; 2]], n: usize) -> Result<(), Error> {
     } else {
         Err(Error::InvalidData)
     }
-}
-
-/// The vertices: every coordinate finite and within [`MAX_COORDINATE`], as `add_triangle` accepts.
-fn read_verts(bytes: &[u8], sum: &mut Fletcher64) -> Result<Vec<Vec3>, Error> {
-    let mut verts = with_room(bytes.len() / VERTEX)?;
-    for_records(bytes, VERTEX, sum, |b| {
-        let p = Vec3::new(f64_at(b, 0), f64_at(b, 8), f64_at(b, 16));
-        if !p.iter().all(|x| x.abs() <= MAX_COORDINATE) {
-            return Err(Error::InvalidData);
-        }
-        verts.push(p);
-        Ok(())
-    })?;
-    Ok(verts)
-}
-
-/// The triangles' vertex indices, in the build's order: the vertices are numbered as they first
-/// appear, so each index is at most one more than the largest before it, and every one of the `v`
-/// vertices is used.
-fn read_faces(bytes: &[u8], v: u32, sum: &mut Fletcher64) -> Result<Vec<[u32; 3]>, Error> {
-    let mut faces = with_room(bytes.len() / 12)?;
-    let mut seen = 0u32;
-    for_records(bytes, 12, sum, |b| {
-        let f = [u32_at(b, 0), u32_at(b, 4), u32_at(b, 8)];
-        for k in f {
-            if k > seen || k >= v {
-                return Err(Error::InvalidData);
-            }
-            seen += u32::from(k == seen);
-        }
-        faces.push(f);
-        Ok(())
-    })?;
-    if seen == v {
-        Ok(faces)
-    } else {
-        Err(Error::InvalidData)
-    }
-}
-
-/// The insertion order: a permutation of `0..n`.
-fn read_added(bytes: &[u8], n: u32, sum: &mut Fletcher64) -> Result<Vec<u32>, Error> {
-    let mut seen: Vec<u64> = with_room((n as usize).div_ceil(64))?;
-    seen.resize((n as usize).div_ceil(64), 0);
-    let mut added = with_room(n as usize)?;
-    for_records(bytes, 4, sum, |b| {
-        let k = u32_at(b, 0);
-        if k >= n {
-            return Err(Error::InvalidData);
-        }
-        let (word, bit) = ((k / 64) as usize, 1u64 << (k % 64));
-        if seen[word] & bit != 0 {
-            return Err(Error::InvalidData);
-        }
-        seen[word] |= bit;
-        added.push(k);
-        Ok(())
-    })?;
-    Ok(added)
 }
 
 #[cfg(test)]
@@ -710,6 +935,218 @@ mod tests {
                 assert_eq!(b.added, c.added);
                 assert_eq!(b.scale.to_bits(), c.scale.to_bits());
                 assert_eq!(b.tiny, c.tiny);
+            }
+        }
+    }
+
+    #[test]
+    fn sums_of_pieces_joined_are_the_sum_of_the_whole() {
+        let mut rng = Rng::new(5);
+        let len = (3 << 13) * 4 + 36;
+        let random: Vec<u8> = (0..len).map(|_| rng.next_u64() as u8).collect();
+        let ones = vec![0xffu8; len];
+        let sums = |b: &[u8]| {
+            let mut f = Fletcher64::default();
+            f.update(b);
+            f.sums()
+        };
+        for bytes in [random, ones] {
+            let whole = sums(&bytes);
+            assert_eq!(whole.finish(), fletcher64_by_definition(&bytes));
+            // Split at every word for the first and last 300 words, around the reduction block
+            // and at random words: odd word counts, counts not a multiple of the eight-word step.
+            let words = len / 4;
+            let mut at: Vec<usize> = (0..300).chain(words - 300..=words).collect();
+            for b in [1 << 13, 2 << 13, 3 << 13] {
+                at.extend(b - 9..=b + 9);
+            }
+            at.extend((0..200).map(|_| rng.below(words + 1)));
+            for k in at {
+                let (x, y) = bytes.split_at(4 * k);
+                assert_eq!(sums(x).then(sums(y)), whole, "split at word {k}");
+            }
+            // Many pieces, joined in order; an empty piece changes nothing.
+            let mut joined = Sums::default();
+            let mut rest = &bytes[..];
+            while !rest.is_empty() {
+                let k = (4 * rng.below(5000)).min(rest.len());
+                joined = joined.then(sums(&rest[..k])).then(Sums::default());
+                rest = &rest[k..];
+            }
+            assert_eq!(joined, whole);
+        }
+        // The join is not a plain sum: pieces in the other order differ.
+        let bytes: Vec<u8> = (0..64u8).collect();
+        let (x, y) = bytes.split_at(20);
+        assert_ne!(sums(y).then(sums(x)).finish(), fletcher64(&bytes));
+    }
+
+    /// Saved bytes of `b`, with the checksum recomputed after `change`.
+    fn saved_with(b: &Bvh, volume: VolumeKind, change: impl Fn(&mut [u8])) -> Vec<u8> {
+        let mut bytes = vec![0u8; b.saved_size()];
+        b.save(volume, &mut bytes);
+        change(&mut bytes);
+        let body = bytes.len() - TRAILER;
+        let sum = fletcher64(&bytes[..body]);
+        bytes[body..].copy_from_slice(&sum.to_le_bytes());
+        bytes
+    }
+
+    /// Every array and derived value of two hierarchies, bit for bit.
+    fn assert_same(b: &Bvh, c: &Bvh) {
+        assert_eq!(b.nodes.len(), c.nodes.len());
+        for (x, y) in b.nodes.iter().zip(&c.nodes) {
+            assert_eq!(x.ssv, y.ssv);
+            assert_eq!(x.ssv_size.to_bits(), y.ssv_size.to_bits());
+            assert_eq!(x.children, y.children);
+        }
+        assert_eq!(b.boxes, c.boxes);
+        assert_eq!(b.verts, c.verts);
+        assert_eq!(b.faces, c.faces);
+        assert_eq!(b.ids, c.ids);
+        assert_eq!(b.added, c.added);
+        assert_eq!(b.collision, c.collision);
+        assert_eq!(b.scale.to_bits(), c.scale.to_bits());
+        assert_eq!(b.tiny, c.tiny);
+    }
+
+    #[test]
+    fn two_threads_load_what_one_does_and_refuse_what_it_refuses() {
+        let mut rng = Rng::new(13);
+        for (n, volume) in [
+            (2, VolumeKind::Rss),
+            (3, VolumeKind::Lss),
+            (40, VolumeKind::Pss),
+            (57, VolumeKind::Hybrid),
+            (300, VolumeKind::Rss),
+        ] {
+            let b = random_bvh(&mut rng, n, volume, CollisionVolume::Ssv);
+            let bytes = saved_with(&b, volume, |_| {});
+            let (one, _) = Bvh::load_with(&bytes, usize::MAX).unwrap();
+            let (two, v) = Bvh::load_with(&bytes, 1).unwrap();
+            assert_eq!(v, volume);
+            assert_same(&b, &one);
+            assert_same(&b, &two);
+            // A value of the order added repeated, in the same share or another (some shares
+            // of a small model have no triangles).
+            let added = bytes.len() - TRAILER - 4 * n;
+            for (i, j) in [(0, 1), (0, n - 1), (n / 2, n - 1), (1, 0), (n - 1, 0)] {
+                if i != j {
+                    let bad = saved_with(&b, volume, |x| {
+                        let w = u32_at(x, added + 4 * i);
+                        x[added + 4 * j..][..4].copy_from_slice(&w.to_le_bytes());
+                    });
+                    for two_from in [1, usize::MAX] {
+                        let r = Bvh::load_with(&bad, two_from);
+                        assert_eq!(r.err(), Some(Error::InvalidData), "{n} {i} {j}");
+                    }
+                }
+            }
+            // One word changed anywhere (in either share, the header or the trailer): refused
+            // by both, the checksum left as it is or made to match.
+            let size = bytes.len();
+            let mut at: Vec<usize> = (0..size / 4).step_by(1 + size / 4 / 400).collect();
+            at.push(size / 4 - 1);
+            for w in at {
+                for reseal in [false, true] {
+                    let mut bad = bytes.clone();
+                    let x = u32_at(&bad, 4 * w) ^ (1 << (w % 32));
+                    bad[4 * w..4 * w + 4].copy_from_slice(&x.to_le_bytes());
+                    if reseal && w < (size - TRAILER) / 4 {
+                        let body = size - TRAILER;
+                        let sum = fletcher64(&bad[..body]);
+                        bad[body..].copy_from_slice(&sum.to_le_bytes());
+                    }
+                    let (r1, r2) = (Bvh::load_with(&bad, usize::MAX), Bvh::load_with(&bad, 1));
+                    match (&r1, &r2) {
+                        (Ok((x, vx)), Ok((y, vy))) => {
+                            // A change that keeps a valid model (a value still in range, an id)
+                            // loads the same on both paths.
+                            assert!(reseal, "{n} word {w}");
+                            assert_eq!(vx, vy);
+                            assert_same(x, y);
+                        }
+                        (Err(e1), Err(e2)) => {
+                            assert_eq!(*e1, Error::InvalidData);
+                            assert_eq!(*e2, Error::InvalidData);
+                        }
+                        _ => panic!("{n} word {w}: {:?} {:?}", r1.is_ok(), r2.is_ok()),
+                    }
+                }
+            }
+        }
+    }
+
+    /// A change made to saved bytes.
+    type Change = Box<dyn Fn(&mut [u8])>;
+
+    #[test]
+    fn faults_in_either_share_are_refused_on_two_threads() {
+        let mut rng = Rng::new(17);
+        let n = 400;
+        let b = random_bvh(&mut rng, n, VolumeKind::Rss, CollisionVolume::Obb);
+        let v = b.verts.len();
+        let nodes = HEADER;
+        let verts = nodes + (n - 1) * NODE;
+        let faces = verts + v * VERTEX;
+        let added = faces + n * TRIANGLE - 4 * n;
+        // Records on either side of each boundary between shares, and in the middle of one.
+        let mut at = vec![(0, 0), (n - 2, n - 1), ((n - 1) / 16, n / 16)];
+        for i in 1..SHARES {
+            let (kn, kt) = ((n - 1) * i / SHARES, n * i / SHARES);
+            at.extend([(kn - 1, kt - 1), (kn, kt)]);
+        }
+        for (k, t) in at {
+            let cases: Vec<Change> = vec![
+                // A node value out of range, a child out of range, the root as a child.
+                Box::new(move |b| {
+                    b[nodes + k * NODE + 88..][..8].copy_from_slice(&(-1.0f64).to_le_bytes())
+                }),
+                Box::new(move |b| {
+                    b[nodes + k * NODE + 144..][..4].copy_from_slice(&(n as u32).to_le_bytes())
+                }),
+                Box::new(move |b| {
+                    b[nodes + k * NODE + 148..][..4].copy_from_slice(&0u32.to_le_bytes())
+                }),
+                // A vertex not finite.
+                Box::new(move |b| {
+                    let at = verts + (t * v / n) * VERTEX;
+                    b[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes())
+                }),
+                // A vertex index out of range or past its first use.
+                Box::new(move |b| {
+                    b[faces + 12 * t..][..4].copy_from_slice(&(v as u32).to_le_bytes())
+                }),
+                Box::new(move |b| {
+                    b[faces + 12 * t + 8..][..4].copy_from_slice(&(v as u32 - 1).to_le_bytes())
+                }),
+                // The order added: a value repeated (in the same share, or across the shares),
+                // out of range.
+                Box::new(move |b| {
+                    let w = u32_at(b, added + 4 * ((t + 1) % n));
+                    b[added + 4 * t..][..4].copy_from_slice(&w.to_le_bytes())
+                }),
+                Box::new(move |b| {
+                    let w = u32_at(b, added + 4 * (n - 1 - t));
+                    b[added + 4 * t..][..4].copy_from_slice(&w.to_le_bytes())
+                }),
+                Box::new(move |b| {
+                    b[added + 4 * t..][..4].copy_from_slice(&(n as u32).to_le_bytes())
+                }),
+            ];
+            for (c, change) in cases.iter().enumerate() {
+                let bytes = saved_with(&b, VolumeKind::Rss, change);
+                if bytes == saved_with(&b, VolumeKind::Rss, |_| {}) {
+                    // The change wrote what was there (the last vertex's index past first use).
+                    continue;
+                }
+                for two_from in [1, usize::MAX] {
+                    assert_eq!(
+                        Bvh::load_with(&bytes, two_from).err(),
+                        Some(Error::InvalidData),
+                        "record {k} {t}, case {c}, {two_from}"
+                    );
+                }
             }
         }
     }
