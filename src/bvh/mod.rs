@@ -351,13 +351,24 @@ impl Bvh {
         collision: CollisionVolume,
         inner_scale: f64,
         shared: bool,
+        scans: Option<Scans>,
     ) -> Bvh {
-        let scale = Bvh::scale_bound(inner_scale, &verts);
-        let tiny = Bvh::has_tiny(&verts, &faces);
-        let distinct = if shared {
-            OnceLock::from(!has_negative_zero(&verts))
-        } else {
-            OnceLock::new()
+        let (scale, tiny, distinct) = match scans {
+            // A parallel build's, scanned on its threads.
+            Some(s) => (
+                inner_scale.max(5.0 * s.vertex),
+                s.tiny,
+                OnceLock::from(!s.negative_zero),
+            ),
+            None => (
+                Bvh::scale_bound(inner_scale, &verts),
+                Bvh::has_tiny(&verts, &faces),
+                if shared {
+                    OnceLock::from(!has_negative_zero(&verts))
+                } else {
+                    OnceLock::new()
+                },
+            ),
         };
         debug_assert_eq!(nodes.len(), boxes.len());
         Bvh {
@@ -380,8 +391,7 @@ impl Bvh {
     /// times the largest coordinate sum over the vertices (a leaf's corner is a vertex, its sides
     /// are at most twice the triangle's diameter, which is at most twice the largest vertex norm).
     fn scale_bound(inner_scale: f64, verts: &[Vec3]) -> f64 {
-        let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
-        inner_scale.max(5.0 * vertex)
+        inner_scale.max(5.0 * largest_sum(verts))
     }
 
     /// The largest scale of the inner nodes' swept sphere volumes (see [`Ssv::slack_for`]), 0
@@ -624,6 +634,42 @@ impl Bvh {
             }
         }
         rec(self, self.root())
+    }
+}
+
+/// The largest `|v|_1` of `verts` (0 if none).
+fn largest_sum(verts: &[Vec3]) -> f64 {
+    verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max)
+}
+
+/// What [`Bvh::assemble`] reads of a build's shared vertices and its faces, when the build has
+/// scanned them itself (on its threads, a part each): the largest `|v|_1` of a vertex, whether
+/// some triangle is tiny (see `tiny`), whether some coordinate is a negative zero. A largest and
+/// two "some": the same however the arrays were cut into parts, scanned and merged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scans {
+    vertex: f64,
+    tiny: bool,
+    negative_zero: bool,
+}
+
+impl Scans {
+    /// Of the vertices `verts` (a part of `all`) and the triangles `faces` (of `all`).
+    pub fn of(verts: &[Vec3], faces: &[[u32; 3]], all: &[Vec3]) -> Scans {
+        Scans {
+            vertex: largest_sum(verts),
+            tiny: Bvh::has_tiny(all, faces),
+            negative_zero: has_negative_zero(verts),
+        }
+    }
+
+    /// Of two parts together.
+    pub fn merge(self, other: Scans) -> Scans {
+        Scans {
+            vertex: self.vertex.max(other.vertex),
+            tiny: self.tiny || other.tiny,
+            negative_zero: self.negative_zero || other.negative_zero,
+        }
     }
 }
 
