@@ -143,17 +143,7 @@ impl Bvh {
         let threads = threads.clamp(1, 1 + n / GRAIN);
         let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3], threads)?;
         // The records, and (the root's) how many corners each vertex is.
-        let mut recs: Vec<Record> = with_room(n)?;
-        let mut counts: Vec<u32> = zeroed(in_verts.len())?;
-        for (k, f) in in_faces.iter().enumerate() {
-            recs.push(Record {
-                face: *f,
-                added: k as u32,
-            });
-            for &v in f {
-                counts[v as usize] += 1;
-            }
-        }
+        let (mut recs, counts) = records(&in_faces, in_verts.len(), threads)?;
         drop(in_faces);
         // The ids in insertion order, for the leaf-order arrays; then the input is dropped. On
         // several threads, another thread does this while this one builds the root.
@@ -247,6 +237,60 @@ impl Bvh {
             nodes, boxes, verts, faces, ids, added, collision, inner, true, scans,
         ))
     }
+}
+
+/// The records of the triangles `faces` (of `verts` distinct vertices), in insertion order, and
+/// how many of their corners each vertex is. On several threads, a run of the triangles a task,
+/// each counting its corners apart; the counts are then added up, a run of the vertices a task
+/// (integers: the same sums in any order).
+fn records(
+    faces: &[[u32; 3]],
+    verts: usize,
+    threads: usize,
+) -> Result<(Vec<Record>, Vec<u32>), Error> {
+    let mut recs: Vec<Record> = zeroed(faces.len())?;
+    let fill = |start: usize, recs: &mut [Record], counts: &mut [u32]| {
+        for (k, (r, f)) in (start..).zip(recs.iter_mut().zip(&faces[start..])) {
+            *r = Record {
+                face: *f,
+                added: k as u32,
+            };
+            for &v in f {
+                counts[v as usize] += 1;
+            }
+        }
+    };
+    if threads == 1 {
+        let mut counts: Vec<u32> = zeroed(verts)?;
+        fill(0, &mut recs, &mut counts);
+        return Ok((recs, counts));
+    }
+    let mut parts = run_tasks(
+        threads,
+        runs_of(&mut recs, threads),
+        |_: &mut (), (start, recs)| {
+            let mut counts: Vec<u32> = zeroed(verts)?;
+            fill(start, recs, &mut counts);
+            Ok(counts)
+        },
+        || Ok(()),
+    )?;
+    let mut counts = parts.remove(0);
+    let parts = &parts;
+    run_tasks(
+        threads,
+        runs_of(&mut counts, threads),
+        |_: &mut (), (start, counts)| {
+            for part in parts {
+                for (c, p) in counts.iter_mut().zip(&part[start..]) {
+                    *c += p;
+                }
+            }
+            Ok(())
+        },
+        || Ok(()),
+    )?;
+    Ok((recs, counts))
 }
 
 /// Builds `sub`'s nodes, depth first; `pool` (if any) may take a child's subtree to build on
@@ -1008,6 +1052,8 @@ unsafe impl ZeroBits for Node {}
 unsafe impl ZeroBits for NodeBox {}
 // SAFETY: integers.
 unsafe impl ZeroBits for u32 {}
+// SAFETY: integers (a record's vertex indices and insertion index).
+unsafe impl ZeroBits for Record {}
 // SAFETY: integers.
 unsafe impl ZeroBits for i32 {}
 // SAFETY: integers.
