@@ -60,7 +60,8 @@ pub(super) struct Input<'a> {
 /// A subtree to build: its triangles' records, the slots of its inner nodes (`recs.len() - 1`,
 /// the first its root's), the index of the first of those slots and of its first triangle in leaf
 /// order, its depth, its root's distinct vertices (indices into `Input::verts`) with how many of
-/// its triangles' corners each is, and its parent's frame (where the root's eigensolver starts).
+/// its triangles' corners each is (both empty for a subtree handed to another thread, which lists
+/// them from the records), and its parent's frame (where the root's eigensolver starts).
 pub(super) struct Subtree<'a> {
     pub recs: &'a mut [Record],
     pub nodes: NodeSlots<'a>,
