@@ -1,8 +1,11 @@
 //! Build time of the benchmark spheres (40,000 and 1,000,000 triangles), and a fingerprint of each
 //! built model (FNV-1a of its saved bytes: equal fingerprints, the same hierarchy bit for bit).
 //!
-//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m] [--threads T] [--cpu]`
-//! (`--threads`: `Model::end_threads(T)`, 0 every core; default 1, `Model::end`)
+//! `cargo run --release --example build_speed [-- --rounds N] [--only 40k|1m] [--threads T] [--cpu]
+//! [--end]` (`--threads`: `Model::end_threads(T)`, 0 every core; default 1, `Model::end`)
+//!
+//! `--end`: time the build call alone (`Model::end_threads`), without the triangles' adds before
+//! it, which are on one thread whatever `--threads` says.
 //!
 //! `--cpu`: time on the processor (this thread's, from `/proc/thread-self/schedstat`, Linux)
 //! rather than elapsed time, so that a loaded machine's preemptions do not count (one thread only:
@@ -21,13 +24,13 @@ fn fingerprint(m: &Model) -> u64 {
     })
 }
 
-fn build(tris: &[Tri], threads: usize) -> Model {
+/// A model of `tris`, begun and added to, not yet built.
+fn added(tris: &[Tri]) -> Model {
     let mut m = Model::new();
     m.begin(tris.len()).unwrap();
     for &(a, b, c, id) in tris {
         m.add_triangle(a, b, c, id).unwrap();
     }
-    m.end_threads(threads).unwrap();
     m
 }
 
@@ -49,6 +52,7 @@ fn main() {
     let only = arg("--only");
     let threads: usize = arg("--threads").map_or(1, |t| t.parse().expect("--threads T"));
     let cpu = args.iter().any(|a| a == "--cpu");
+    let end_only = args.iter().any(|a| a == "--end");
     for (name, lat, lon) in [("40k", 101, 200), ("1m", 501, 1000)] {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
@@ -57,8 +61,13 @@ fn main() {
         let mut times = Vec::new();
         let mut print = 0;
         for _ in 0..rounds {
+            // With `--end` the clocks start after the adds.
+            let mut m = if end_only { added(&tris) } else { Model::new() };
             let (t, c) = (Instant::now(), cpu_ms());
-            let m = build(&tris, threads);
+            if !end_only {
+                m = added(&tris);
+            }
+            m.end_threads(threads).unwrap();
             times.push(match (cpu, c, cpu_ms()) {
                 (true, Some(c0), Some(c1)) => c1 - c0,
                 _ => t.elapsed().as_secs_f64() * 1e3,
@@ -66,8 +75,9 @@ fn main() {
             print = fingerprint(&m);
         }
         println!(
-            "{name}: {} triangles, build {:.2} ms (median of {rounds}, {threads} threads), tree {print:016x}",
+            "{name}: {} triangles, {} {:.2} ms (median of {rounds}, {threads} threads), tree {print:016x}",
             tris.len(),
+            if end_only { "end" } else { "build" },
             median(times)
         );
     }

@@ -22,7 +22,8 @@
 
 use super::build_threads::{GRAIN, Pool, run_tasks};
 use super::principal_axes::{axes_of, weighted_scatter};
-use super::{Bvh, CollisionVolume, Node, NodeBox, NodeRef, NodeSlots, VolumeKind};
+use super::saved::populate_pages;
+use super::{Bvh, CollisionVolume, Node, NodeBox, NodeRef, NodeSlots, Scans, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
 use crate::geometry::Tri;
@@ -59,7 +60,8 @@ pub(super) struct Input<'a> {
 /// A subtree to build: its triangles' records, the slots of its inner nodes (`recs.len() - 1`,
 /// the first its root's), the index of the first of those slots and of its first triangle in leaf
 /// order, its depth, its root's distinct vertices (indices into `Input::verts`) with how many of
-/// its triangles' corners each is, and its parent's frame (where the root's eigensolver starts).
+/// its triangles' corners each is (both empty for a subtree handed to another thread, which lists
+/// them from the records), and its parent's frame (where the root's eigensolver starts).
 pub(super) struct Subtree<'a> {
     pub recs: &'a mut [Record],
     pub nodes: NodeSlots<'a>,
@@ -142,17 +144,7 @@ impl Bvh {
         let threads = threads.clamp(1, 1 + n / GRAIN);
         let (in_verts, in_faces) = share_corners(n, |c| &tris[c / 3].0[c % 3], threads)?;
         // The records, and (the root's) how many corners each vertex is.
-        let mut recs: Vec<Record> = with_room(n)?;
-        let mut counts: Vec<u32> = zeroed(in_verts.len())?;
-        for (k, f) in in_faces.iter().enumerate() {
-            recs.push(Record {
-                face: *f,
-                added: k as u32,
-            });
-            for &v in f {
-                counts[v as usize] += 1;
-            }
-        }
+        let (mut recs, counts) = records(&in_faces, in_verts.len(), threads)?;
         drop(in_faces);
         // The ids in insertion order, for the leaf-order arrays; then the input is dropped. On
         // several threads, another thread does this while this one builds the root.
@@ -170,9 +162,23 @@ impl Bvh {
         };
         let mut nodes: Vec<Node> = zeroed(n - 1)?;
         let mut boxes: Vec<NodeBox> = zeroed(n - 1)?;
+        // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
+        // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
+        // gives, as the hierarchy's triangles of a subtree are then near each other). In fresh
+        // zeroed memory, each entry written once, after the hierarchy is built.
+        let mut ids: Vec<i32> = zeroed(n)?;
+        let mut added: Vec<u32> = zeroed(n)?;
+        let mut faces: Vec<[u32; 3]> = zeroed(n)?;
+        let mut verts: Vec<Vec3> = zeroed(in_verts.len())?;
         if n == 1 {
             ids_of(tris, &mut given_ids);
         } else {
+            // Where the nodes and their boxes are, for the thread that maps their pages in.
+            let node_bytes = [
+                (nodes.as_mut_ptr().cast::<u8>(), size_of_val(&nodes[..])),
+                (boxes.as_mut_ptr().cast::<u8>(), size_of_val(&boxes[..])),
+            ]
+            .map(|(p, len)| (p as usize, len));
             // The root's vertices: all of them, each as many times as the triangles' corners.
             let mut all: Vec<u32> = with_room(in_verts.len())?;
             all.extend(0..in_verts.len() as u32);
@@ -198,34 +204,94 @@ impl Bvh {
                     || Scratch::new(in_verts.len()),
                     || {
                         ids_of(tris, &mut given_ids);
+                        // The fresh arrays the build will write are then mapped in here, while
+                        // this thread would otherwise wait for the root's split (the first page
+                        // faults of 200 bytes a triangle, in one call a run of pages rather than
+                        // one fault a page on the building threads): first the nodes and boxes
+                        // (the building threads write them meanwhile: only the kernel's call,
+                        // which touches no byte, may map them in here), then the leaf-order
+                        // arrays, which only this closure holds until the build ends.
+                        for (at, len) in node_bytes {
+                            populate_in_runs(at as *mut u8, len);
+                        }
+                        prefault(&mut ids);
+                        prefault(&mut added);
+                        prefault(&mut faces);
+                        prefault(&mut verts);
                         Ok(())
                     },
                 )?;
             }
         }
 
-        // The leaf-order arrays: ids, insertion indices, and the vertices renumbered in the order
-        // they first appear in leaf order (what `share_vertices` of the leaf-ordered triangles
-        // gives, as the hierarchy's triangles of a subtree are then near each other). In fresh
-        // zeroed memory, each entry written once.
-        let mut ids: Vec<i32> = zeroed(n)?;
-        let mut added: Vec<u32> = zeroed(n)?;
-        let mut faces: Vec<[u32; 3]> = zeroed(n)?;
-        let mut verts: Vec<Vec3> = zeroed(in_verts.len())?;
         let out = LeafOrder {
             ids: &mut ids,
             added: &mut added,
             faces: &mut faces,
             verts: &mut verts,
         };
-        let inner = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes)?;
+        let (inner, scans) = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes)?;
         drop(recs);
         drop(given_ids);
         // `in_verts` are shared, and `verts` is a permutation of them.
         Ok(Bvh::assemble(
-            nodes, boxes, verts, faces, ids, added, collision, inner, true,
+            nodes, boxes, verts, faces, ids, added, collision, inner, true, scans,
         ))
     }
+}
+
+/// The records of the triangles `faces` (of `verts` distinct vertices), in insertion order, and
+/// how many of their corners each vertex is. On several threads, a run of the triangles a task,
+/// each counting its corners apart; the counts are then added up, a run of the vertices a task
+/// (integers: the same sums in any order).
+fn records(
+    faces: &[[u32; 3]],
+    verts: usize,
+    threads: usize,
+) -> Result<(Vec<Record>, Vec<u32>), Error> {
+    let mut recs: Vec<Record> = zeroed(faces.len())?;
+    let fill = |start: usize, recs: &mut [Record], counts: &mut [u32]| {
+        for (k, (r, f)) in (start..).zip(recs.iter_mut().zip(&faces[start..])) {
+            *r = Record {
+                face: *f,
+                added: k as u32,
+            };
+            for &v in f {
+                counts[v as usize] += 1;
+            }
+        }
+    };
+    if threads == 1 {
+        let mut counts: Vec<u32> = zeroed(verts)?;
+        fill(0, &mut recs, &mut counts);
+        return Ok((recs, counts));
+    }
+    let mut parts = run_tasks(
+        threads,
+        runs_of(&mut recs, threads),
+        |_: &mut (), (start, recs)| {
+            let mut counts: Vec<u32> = zeroed(verts)?;
+            fill(start, recs, &mut counts);
+            Ok(counts)
+        },
+        || Ok(()),
+    )?;
+    let mut counts = parts.remove(0);
+    let parts = &parts;
+    run_tasks(
+        threads,
+        runs_of(&mut counts, threads),
+        |_: &mut (), (start, counts)| {
+            for part in parts {
+                for (c, p) in counts.iter_mut().zip(&part[start..]) {
+                    *c += p;
+                }
+            }
+            Ok(())
+        },
+        || Ok(()),
+    )?;
+    Ok((recs, counts))
 }
 
 /// Builds `sub`'s nodes, depth first; `pool` (if any) may take a child's subtree to build on
@@ -242,14 +308,19 @@ fn build_subtree<'a>(
     // node's along a path (each at most three per triangle below it, a geometric series).
     let bottom = scratch.lists.len();
     let m = sub.recs.len();
-    let room = sub.verts.len() + 6 * m + 64;
+    let room = sub.verts.len().max(3 * m) + 6 * m + 64;
     scratch.lists.try_reserve(room).map_err(oom)?;
     scratch.counts.try_reserve(room).map_err(oom)?;
-    for (i, &v) in sub.verts.iter().enumerate() {
-        scratch.slots[v as usize].pos = i as u32;
+    if sub.verts.is_empty() {
+        // A subtree handed over by another thread: its vertices are listed here.
+        list_vertices(scratch, sub.recs, sub.base);
+    } else {
+        for (i, &v) in sub.verts.iter().enumerate() {
+            scratch.slots[v as usize].pos = i as u32;
+        }
+        scratch.lists.extend_from_slice(&sub.verts);
+        scratch.counts.extend_from_slice(&sub.counts);
     }
-    scratch.lists.extend_from_slice(&sub.verts);
-    scratch.counts.extend_from_slice(&sub.counts);
     drop(sub.verts);
     drop(sub.counts);
     let r = node(
@@ -339,7 +410,8 @@ impl LeafOrder<'_> {
     /// in all, the vertices are those of the first run, then those of the second, and so on,
     /// each run's in its order. So each run numbers its own, from where the earlier runs' end,
     /// and copies them into place; then each run's faces are renumbered, and a share of the
-    /// nodes scanned for their largest scale.
+    /// nodes scanned for their largest scale, and a share of the faces and vertices for what
+    /// [`Bvh::assemble`] reads of them (on one thread, `None`: `assemble` scans them).
     fn fill_on(
         self,
         threads: usize,
@@ -347,10 +419,10 @@ impl LeafOrder<'_> {
         given_ids: &[i32],
         in_verts: &[Vec3],
         nodes: &[Node],
-    ) -> Result<f64, Error> {
+    ) -> Result<(f64, Option<Scans>), Error> {
         if threads == 1 {
             self.fill(recs, given_ids, in_verts)?;
-            return Ok(Bvh::inner_scale(nodes));
+            return Ok((Bvh::inner_scale(nodes), None));
         }
         let runs = 4 * threads;
         let cut = |k: usize, len: usize| k * len / runs;
@@ -458,23 +530,25 @@ impl LeafOrder<'_> {
         )?;
         drop(lists);
         self.verts.truncate(from);
+        let verts = &self.verts[..];
         let mut faces = self.faces;
         let mut renumbering = Vec::new();
         for k in 0..runs {
             let len = cut(k + 1, n) - cut(k, n);
             let (f, rest) = std::mem::take(&mut faces).split_at_mut(len);
             faces = rest;
-            let m = nodes.len();
+            let (m, v) = (nodes.len(), verts.len());
             renumbering.push((
                 &recs[cut(k, n)..cut(k + 1, n)],
                 f,
                 &nodes[cut(k, m)..cut(k + 1, m)],
+                &verts[cut(k, v)..cut(k + 1, v)],
             ));
         }
-        let scales = run_tasks(
+        let scans = run_tasks(
             threads,
             renumbering,
-            |_: &mut (), (recs, faces, nodes)| {
+            |_: &mut (), (recs, faces, nodes, part)| {
                 for (j, (r, face)) in recs.iter().zip(faces.iter_mut()).enumerate() {
                     if let Some(next) = recs.get(j + AHEAD) {
                         for &v in &next.face {
@@ -483,12 +557,17 @@ impl LeafOrder<'_> {
                     }
                     *face = r.face.map(|v| remap[v as usize].load(Ordering::Relaxed));
                 }
-                Ok(Bvh::inner_scale(nodes))
+                Ok((Bvh::inner_scale(nodes), Scans::of(part, faces, verts)))
             },
             || Ok(()),
         )?;
-        // The largest of the largest: the same whatever the cut, as `max` is.
-        Ok(scales.into_iter().fold(0.0, f64::max))
+        // The largest of the largest, and the scans merged: the same whatever the cut, as `max`
+        // and "some" are.
+        Ok(scans
+            .into_iter()
+            .reduce(|(a, s), (b, t)| (a.max(b), s.merge(t)))
+            .map(|(inner, s)| (inner, Some(s)))
+            .unwrap_or((0.0, None)))
     }
 }
 
@@ -571,43 +650,6 @@ fn node<'a>(
             continue;
         }
         this.children[k] = NodeRef::inner(cbase);
-        // The child's distinct vertices, in the order its triangles first give them, with their
-        // multiplicities and positions.
-        // Written into room for every corner, then cut to the vertices met: no capacity check per
-        // corner, and the only branch is on a vertex being new. A new vertex's count is written
-        // as 1 there (rather than the room zeroed first, a pass over every corner's slot, and
-        // added to after), a repeat's added to.
-        let start = scratch.lists.len();
-        let tag = cbase as u32;
-        let corners = 3 * crecs.len();
-        scratch.lists.reserve(corners);
-        scratch.counts.reserve(corners);
-        let room = &mut scratch.lists.spare_capacity_mut()[..corners];
-        let counts = &mut scratch.counts.spare_capacity_mut()[..corners];
-        let mut len = 0usize;
-        for r in crecs.iter() {
-            for &v in &r.face {
-                let slot = &mut scratch.slots[v as usize];
-                if slot.stamp != tag {
-                    *slot = Slot {
-                        stamp: tag,
-                        pos: len as u32,
-                    };
-                    room[len].write(v);
-                    counts[len].write(1);
-                    len += 1;
-                } else {
-                    // SAFETY: a vertex met before has its count at `pos < len`, written when it
-                    // was first met.
-                    unsafe { *counts[slot.pos as usize].assume_init_mut() += 1 };
-                }
-            }
-        }
-        // SAFETY: the first `len` entries of both spare capacities were written just above.
-        unsafe {
-            scratch.lists.set_len(start + len);
-            scratch.counts.set_len(start + len);
-        }
         let sub = Subtree {
             recs: crecs,
             nodes: cnodes,
@@ -618,59 +660,80 @@ fn node<'a>(
             counts: Vec::new(),
             frame: axes,
         };
-        match offer_subtree(scratch, start, sub, pool)? {
-            None => {}
-            Some(sub) => {
-                node(
-                    input,
-                    scratch,
-                    sub.recs,
-                    sub.nodes,
-                    sub.base,
-                    sub.first_leaf,
-                    sub.depth,
-                    &sub.frame,
-                    start,
-                    pool,
-                )?;
-            }
-        }
+        // Offered before its vertex list is made: a thread that takes it lists the vertices
+        // itself (the same list, which depends only on the records), while this one goes on.
+        let Some(sub) = offer_subtree(sub, pool) else {
+            continue;
+        };
+        let start = scratch.lists.len();
+        list_vertices(scratch, sub.recs, sub.base);
+        node(
+            input,
+            scratch,
+            sub.recs,
+            sub.nodes,
+            sub.base,
+            sub.first_leaf,
+            sub.depth,
+            &sub.frame,
+            start,
+            pool,
+        )?;
         scratch.lists.truncate(start);
         scratch.counts.truncate(start);
     }
     Ok(())
 }
 
-/// Offers `sub` (its vertices `scratch.lists[start..]`, their multiplicities alongside) to the
-/// pool: `None` if taken, else the subtree back, to build here. Only subtrees worth a thread are
-/// offered, and only while a thread is idle (their vertex list is then copied, once per subtree
-/// handed over).
-fn offer_subtree<'a>(
-    scratch: &Scratch,
-    start: usize,
-    mut sub: Subtree<'a>,
-    pool: Option<&Pool<Subtree<'a>>>,
-) -> Result<Option<Subtree<'a>>, Error> {
-    let Some(pool) = pool else {
-        return Ok(Some(sub));
-    };
-    if sub.recs.len() < GRAIN || !pool.wants() {
-        return Ok(Some(sub));
+/// Lists the distinct vertices of the triangles `recs` (of the node numbered `base`) on the
+/// scratch stack, in the order the triangles first give them, with how many corners each is, and
+/// their positions in the list in `scratch.slots`.
+fn list_vertices(scratch: &mut Scratch, recs: &[Record], base: usize) {
+    // Written into room for every corner, then cut to the vertices met: no capacity check per
+    // corner, and the only branch is on a vertex being new. A new vertex's count is written as 1
+    // there (rather than the room zeroed first, a pass over every corner's slot, and added to
+    // after), a repeat's added to. The stamp is the node's number, which no other node has: a
+    // thread's stamps need no clearing between the subtrees it builds.
+    let start = scratch.lists.len();
+    let tag = base as u32;
+    let corners = 3 * recs.len();
+    scratch.lists.reserve(corners);
+    scratch.counts.reserve(corners);
+    let room = &mut scratch.lists.spare_capacity_mut()[..corners];
+    let counts = &mut scratch.counts.spare_capacity_mut()[..corners];
+    let mut len = 0usize;
+    for r in recs {
+        for &v in &r.face {
+            let slot = &mut scratch.slots[v as usize];
+            if slot.stamp != tag {
+                *slot = Slot {
+                    stamp: tag,
+                    pos: len as u32,
+                };
+                room[len].write(v);
+                counts[len].write(1);
+                len += 1;
+            } else {
+                // SAFETY: a vertex met before has its count at `pos < len`, written when it was
+                // first met.
+                unsafe { *counts[slot.pos as usize].assume_init_mut() += 1 };
+            }
+        }
     }
-    let copy = |list: &[u32]| -> Result<Vec<u32>, Error> {
-        let mut v = Vec::new();
-        v.try_reserve_exact(list.len())
-            .map_err(|_| Error::ModelOutOfMemory)?;
-        v.extend_from_slice(list);
-        Ok(v)
-    };
-    sub.verts = copy(&scratch.lists[start..])?;
-    sub.counts = copy(&scratch.counts[start..])?;
-    Ok(pool.offer(sub).map(|mut sub| {
-        sub.verts = Vec::new();
-        sub.counts = Vec::new();
-        sub
-    }))
+    // SAFETY: the first `len` entries of both spare capacities were written just above.
+    unsafe {
+        scratch.lists.set_len(start + len);
+        scratch.counts.set_len(start + len);
+    }
+}
+
+/// Offers `sub` (without its vertex list) to the pool: `None` if taken, else the subtree back, to
+/// build here. Only subtrees worth a thread are offered, and only while a thread is idle.
+fn offer_subtree<'a>(sub: Subtree<'a>, pool: Option<&Pool<Subtree<'a>>>) -> Option<Subtree<'a>> {
+    match pool {
+        Some(pool) if sub.recs.len() >= GRAIN && pool.wants() => pool.offer(sub),
+        _ => Some(sub),
+    }
 }
 
 /// The distinct vertices of the triangles (equal coordinates, bit for bit, stored once, in the order
@@ -934,6 +997,51 @@ fn hash(key: &[u64; 3]) -> u64 {
     h.wrapping_mul(K)
 }
 
+/// Bytes mapped in by one call of [`populate_in_runs`]: the kernel holds the memory map's lock
+/// (for reading) through a call, so the building threads' own page faults are not kept waiting
+/// long.
+const POPULATE_RUN: usize = 1 << 21;
+
+/// [`populate_pages`] of the `len` bytes at `start` (an allocation), a run of [`POPULATE_RUN`]
+/// bytes at a time; stops at the first refusal (nothing is lost: the pages are then mapped in by
+/// the first writes, as without it). Whether every call succeeded.
+fn populate_in_runs(start: *mut u8, len: usize) -> bool {
+    let mut done = 0;
+    while done < len {
+        let run = POPULATE_RUN.min(len - done);
+        // (`wrapping_add`: the address stays inside the allocation; no reference is made.)
+        if !populate_pages(start.wrapping_add(done), run) {
+            return false;
+        }
+        done += run;
+    }
+    true
+}
+
+/// Maps in the pages of `v` before its first writes, with [`populate_in_runs`] or, where that is
+/// refused, by [`touch_pages`].
+fn prefault<T>(v: &mut [T]) {
+    if !populate_in_runs(v.as_mut_ptr().cast(), size_of_val(v)) {
+        touch_pages(v);
+    }
+}
+
+/// Writes one byte in every 4 KiB of `v` back with the value it has (what maps in a fresh page,
+/// the contents unchanged). Volatile, so the compiler keeps the writes that change nothing.
+fn touch_pages<T>(v: &mut [T]) {
+    let (start, len) = (v.as_mut_ptr().cast::<u8>(), size_of_val(v));
+    for offset in (0..len).step_by(1 << 12) {
+        // SAFETY: `offset < len`: the byte is inside `v`, which this function holds exclusively;
+        // every byte of it is initialized (a `T`'s padding aside, which is never read or written
+        // here as a value of `T`: read as a byte it may be uninitialized, so it is read and
+        // written as `MaybeUninit<u8>`).
+        unsafe {
+            let p = start.add(offset).cast::<std::mem::MaybeUninit<u8>>();
+            p.write_volatile(p.read_volatile());
+        }
+    }
+}
+
 /// Types for which zero bits are a valid value: only floats and integers.
 ///
 /// # Safety
@@ -945,6 +1053,8 @@ unsafe impl ZeroBits for Node {}
 unsafe impl ZeroBits for NodeBox {}
 // SAFETY: integers.
 unsafe impl ZeroBits for u32 {}
+// SAFETY: integers (a record's vertex indices and insertion index).
+unsafe impl ZeroBits for Record {}
 // SAFETY: integers.
 unsafe impl ZeroBits for i32 {}
 // SAFETY: integers.
@@ -1420,6 +1530,63 @@ mod tests {
         assert_eq!(a.faces, b.faces, "{what}");
         assert_eq!(a.ids, b.ids, "{what}");
         assert_eq!(a.added, b.added, "{what}");
+        // What `assemble` derives from the arrays (on several threads, scanned by `fill_on`).
+        assert_eq!(a.scale, b.scale, "{what}");
+        assert_eq!(a.tiny, b.tiny, "{what}");
+        assert_eq!(a.distinct.get(), b.distinct.get(), "{what}");
+    }
+
+    #[test]
+    fn threads_scan_the_arrays_as_one_thread() {
+        // A mesh big enough for several threads, as built, then with one triangle tiny (every
+        // coordinate below RESCALE_LO) far from the first run of leaves, and a negative zero.
+        // (Adding zero turns the sphere's negative zeros into zeros.)
+        let mesh: Vec<(Tri, i32)> = bumpy_sphere(60, 150)
+            .into_iter()
+            .map(|(t, id)| (t.map(|p| p + Vec3::zeros()), id))
+            .collect();
+        assert!(mesh.len() > 4 * GRAIN);
+        let mut odd = mesh.clone();
+        let tiny = Vec3::new(1e-160, 2e-160, 0.0);
+        odd[mesh.len() - 5].0 = [tiny, tiny * 2.0, tiny * 3.0];
+        odd[mesh.len() / 3].0[1].x = -0.0;
+        for (tris, has_odd) in [(&mesh, false), (&odd, true)] {
+            let one =
+                Bvh::build_threads(tris.clone(), VolumeKind::Rss, CollisionVolume::Obb, 1).unwrap();
+            assert_eq!(one.tiny, has_odd);
+            assert_eq!(one.distinct.get(), Some(&!has_odd));
+            for threads in [2, 3, 5] {
+                let many = Bvh::build_threads(
+                    tris.clone(),
+                    VolumeKind::Rss,
+                    CollisionVolume::Obb,
+                    threads,
+                )
+                .unwrap();
+                assert_same(&one, &many, &format!("{has_odd}, {threads} threads"));
+            }
+        }
+    }
+
+    #[test]
+    fn prefaulting_keeps_contents() {
+        // Both ways of mapping pages in (the kernel's call, and the writes where it is refused)
+        // leave every value as it was, on a whole number of pages and on a ragged end.
+        for len in [1, 1000, 3 * 4096 + 7, 1 << 20] {
+            let want: Vec<u32> = (0..len as u32)
+                .map(|i| i.wrapping_mul(2_654_435_761))
+                .collect();
+            let mut v = want.clone();
+            prefault(&mut v);
+            assert_eq!(v, want);
+            touch_pages(&mut v);
+            assert_eq!(v, want);
+            let mut z: Vec<Vec3> = zeroed(len).unwrap();
+            touch_pages(&mut z);
+            assert!(z.iter().all(|p| *p == Vec3::zeros()));
+            prefault(&mut z);
+            assert!(z.iter().all(|p| *p == Vec3::zeros()));
+        }
     }
 
     #[test]
@@ -1544,13 +1711,21 @@ mod tests {
                 faces: &mut f,
                 verts: &mut v,
             };
-            let scale = out.fill_on(threads, &recs, &given_ids, &in_verts, &nodes);
-            (i, a, f, v, scale.unwrap())
+            let (scale, scans) = out
+                .fill_on(threads, &recs, &given_ids, &in_verts, &nodes)
+                .unwrap();
+            ((i, a, f, v, scale), scans)
         };
-        let one = fill(1);
-        assert!(one.3.len() <= 30 && one.4 > 0.0);
+        let (one, none) = fill(1);
+        assert!(one.3.len() <= 30 && one.4 > 0.0 && none.is_none());
+        // On several threads the scans of what `assemble` reads come along, as of all of it.
+        let want = Scans::of(&one.3, &one.2, &one.3);
         for threads in 2..6 {
-            assert_eq!(fill(threads), one, "{threads} threads");
+            assert_eq!(
+                fill(threads),
+                (one.clone(), Some(want)),
+                "{threads} threads"
+            );
         }
     }
 

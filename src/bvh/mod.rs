@@ -351,16 +351,33 @@ impl Bvh {
         collision: CollisionVolume,
         inner_scale: f64,
         shared: bool,
+        scans: Option<Scans>,
     ) -> Bvh {
-        let scale = Bvh::scale_bound(inner_scale, &verts);
-        let tiny = Bvh::has_tiny(&verts, &faces);
+        let (scale, tiny, distinct) = match scans {
+            // A parallel build's, scanned on its threads.
+            Some(s) => (
+                inner_scale.max(5.0 * s.vertex),
+                s.tiny,
+                OnceLock::from(!s.negative_zero),
+            ),
+            None => (
+                Bvh::scale_bound(inner_scale, &verts),
+                Bvh::has_tiny(&verts, &faces),
+                if shared {
+                    OnceLock::from(!has_negative_zero(&verts))
+                } else {
+                    OnceLock::new()
+                },
+            ),
+        };
         Bvh::assembled(
-            nodes, boxes, verts, faces, ids, added, collision, scale, tiny, shared,
+            nodes, boxes, verts, faces, ids, added, collision, scale, tiny, distinct,
         )
     }
 
-    /// [`Bvh::assemble`] with `scale` ([`Bvh::scale_bound`]) and `tiny` ([`Bvh::has_tiny`])
-    /// already computed (a load takes them as it reads the vertices, in no extra pass).
+    /// [`Bvh::assemble`] with `scale` ([`Bvh::scale_bound`]), `tiny` ([`Bvh::has_tiny`]) and
+    /// `distinct` (see [`Bvh::distinct_vertices`]; empty: checked on first use) already computed
+    /// (a load takes the first two as it reads the vertices, in no extra pass).
     #[allow(clippy::too_many_arguments)]
     fn assembled(
         nodes: Vec<Node>,
@@ -372,13 +389,8 @@ impl Bvh {
         collision: CollisionVolume,
         scale: f64,
         tiny: bool,
-        shared: bool,
+        distinct: OnceLock<bool>,
     ) -> Bvh {
-        let distinct = if shared {
-            OnceLock::from(!has_negative_zero(&verts))
-        } else {
-            OnceLock::new()
-        };
         debug_assert_eq!(nodes.len(), boxes.len());
         Bvh {
             nodes,
@@ -400,8 +412,7 @@ impl Bvh {
     /// times the largest coordinate sum over the vertices (a leaf's corner is a vertex, its sides
     /// are at most twice the triangle's diameter, which is at most twice the largest vertex norm).
     fn scale_bound(inner_scale: f64, verts: &[Vec3]) -> f64 {
-        let vertex = verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max);
-        inner_scale.max(5.0 * vertex)
+        inner_scale.max(5.0 * largest_sum(verts))
     }
 
     /// The largest scale of the inner nodes' swept sphere volumes (see [`Ssv::slack_for`]), 0
@@ -644,6 +655,42 @@ impl Bvh {
             }
         }
         rec(self, self.root())
+    }
+}
+
+/// The largest `|v|_1` of `verts` (0 if none).
+fn largest_sum(verts: &[Vec3]) -> f64 {
+    verts.iter().map(|v| v.abs().sum()).fold(0.0, f64::max)
+}
+
+/// What [`Bvh::assemble`] reads of a build's shared vertices and its faces, when the build has
+/// scanned them itself (on its threads, a part each): the largest `|v|_1` of a vertex, whether
+/// some triangle is tiny (see `tiny`), whether some coordinate is a negative zero. A largest and
+/// two "some": the same however the arrays were cut into parts, scanned and merged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scans {
+    vertex: f64,
+    tiny: bool,
+    negative_zero: bool,
+}
+
+impl Scans {
+    /// Of the vertices `verts` (a part of `all`) and the triangles `faces` (of `all`).
+    pub fn of(verts: &[Vec3], faces: &[[u32; 3]], all: &[Vec3]) -> Scans {
+        Scans {
+            vertex: largest_sum(verts),
+            tiny: Bvh::has_tiny(all, faces),
+            negative_zero: has_negative_zero(verts),
+        }
+    }
+
+    /// Of two parts together.
+    pub fn merge(self, other: Scans) -> Scans {
+        Scans {
+            vertex: self.vertex.max(other.vertex),
+            tiny: self.tiny || other.tiny,
+            negative_zero: self.negative_zero || other.negative_zero,
+        }
     }
 }
 

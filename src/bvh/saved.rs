@@ -24,6 +24,7 @@ use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::RESCALE_LO;
 use crate::math::Vec3;
 use std::mem::MaybeUninit;
+use std::sync::OnceLock;
 
 /// The first eight bytes of every saved model.
 const MAGIC: [u8; 8] = *b"PQPMODEL";
@@ -251,6 +252,20 @@ pub(super) fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     Ok(v)
 }
 
+#[cfg(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(miri)
+))]
+unsafe extern "C" {
+    /// libc's `int madvise(void *addr, size_t length, int advice)`.
+    fn madvise(
+        addr: *mut std::ffi::c_void,
+        length: usize,
+        advice: std::ffi::c_int,
+    ) -> std::ffi::c_int;
+}
+
 /// Asks Linux to back the whole 2 MiB pages of `len` bytes at `start`, freshly allocated and not
 /// yet touched, with huge pages (`madvise(MADV_HUGEPAGE)`; transparent huge pages on request are
 /// the default setting). A load writes every byte of the model once: with 4 KiB pages most of its
@@ -266,14 +281,6 @@ pub(super) fn advise_huge_pages(start: *mut u8, len: usize) {
     const HUGE: usize = 1 << 21;
     // MADV_HUGEPAGE on these targets (asm-generic/mman-common.h).
     const MADV_HUGEPAGE: std::ffi::c_int = 14;
-    unsafe extern "C" {
-        /// libc's `int madvise(void *addr, size_t length, int advice)`.
-        fn madvise(
-            addr: *mut std::ffi::c_void,
-            length: usize,
-            advice: std::ffi::c_int,
-        ) -> std::ffi::c_int;
-    }
     if len < 2 * HUGE {
         return;
     }
@@ -293,6 +300,46 @@ pub(super) fn advise_huge_pages(start: *mut u8, len: usize) {
     not(miri)
 )))]
 pub(super) fn advise_huge_pages(_start: *mut u8, _len: usize) {}
+
+/// Asks Linux to map in, writable, the 4 KiB pages wholly inside the `len` bytes at `start` (part
+/// of an allocation), as the first write to each would (`madvise(MADV_POPULATE_WRITE)`, Linux 5.14
+/// on), without reading or writing any byte: the contents do not change, and another thread may
+/// be using the memory meanwhile. Whether the call succeeded: false if refused (an older kernel)
+/// or not built (other systems, Miri).
+#[cfg(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(miri)
+))]
+pub(super) fn populate_pages(start: *mut u8, len: usize) -> bool {
+    const PAGE: usize = 1 << 12;
+    // MADV_POPULATE_WRITE (asm-generic/mman-common.h).
+    const MADV_POPULATE_WRITE: std::ffi::c_int = 23;
+    let first = (start as usize).next_multiple_of(PAGE);
+    let end = (start as usize + len) & !(PAGE - 1);
+    if end <= first {
+        return true;
+    }
+    // SAFETY: [first, end) lies inside the allocation of `len` bytes at `start`; populating maps
+    // in its pages with the contents they already have (zeros for pages never touched) and
+    // accesses no byte of them as far as the program can tell.
+    unsafe {
+        madvise(
+            first as *mut std::ffi::c_void,
+            end - first,
+            MADV_POPULATE_WRITE,
+        ) == 0
+    }
+}
+
+#[cfg(not(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64"),
+    not(miri)
+)))]
+pub(super) fn populate_pages(_start: *mut u8, _len: usize) -> bool {
+    false
+}
 
 /// The sections of a saved hierarchy of `n` triangles (n >= 1) and `v` vertices, in bytes, in the
 /// order they follow the header; `None` if their sum overflows.
@@ -546,7 +593,16 @@ impl Bvh {
         let tiny = found.iter().any(|f| f.tiny_vertex) && Bvh::has_tiny(&verts, &faces);
         Ok((
             Bvh::assembled(
-                nodes, boxes, verts, faces, ids, added, collision, scale, tiny, false,
+                nodes,
+                boxes,
+                verts,
+                faces,
+                ids,
+                added,
+                collision,
+                scale,
+                tiny,
+                OnceLock::new(),
             ),
             volume,
         ))
