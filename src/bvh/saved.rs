@@ -978,19 +978,7 @@ mod tests {
                 let (c, v) = Bvh::load(&bytes).unwrap();
                 assert_eq!(v, volume);
                 assert_eq!(c.collision, collision);
-                assert_eq!(c.nodes.len(), b.nodes.len());
-                for (x, y) in b.nodes.iter().zip(&c.nodes) {
-                    assert_eq!(x.ssv, y.ssv);
-                    assert_eq!(x.ssv_size.to_bits(), y.ssv_size.to_bits());
-                    assert_eq!(x.children, y.children);
-                }
-                assert_eq!(b.boxes, c.boxes);
-                assert_eq!(b.verts, c.verts);
-                assert_eq!(b.faces, c.faces);
-                assert_eq!(b.ids, c.ids);
-                assert_eq!(b.added, c.added);
-                assert_eq!(b.scale.to_bits(), c.scale.to_bits());
-                assert_eq!(b.tiny, c.tiny);
+                assert_same(&b, &c);
             }
         }
     }
