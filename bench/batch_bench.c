@@ -4,7 +4,9 @@
  *
  * For each workload and query it times, in each round and in turn: n single calls in a loop (one
  * result object reused, as a planner's loop would), the batch on 1 thread, the batch on 2 threads;
- * it prints the median over the rounds and the ratios single / batch, and checks that the batch
+ * it prints the median time over the rounds and the median over the rounds of each round's ratio
+ * single / batch (a round's three runs follow one another, so that the ratio is of times measured
+ * at nearly the same moment on this shared host), and checks that the batch
  * answers what the single calls answer (approximate distance: single calls searching afresh, as a
  * fresh result does; a last row shows single calls reusing their result, which answer otherwise).
  *
@@ -280,7 +282,7 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
     double *single = (double *)malloc(w->n * sizeof(double));
     double *batch = (double *)malloc(w->n * sizeof(double));
     int *ints = (int *)malloc(w->n * sizeof(int));
-    double t[3][MAX_ROUNDS], cpu[3][MAX_ROUNDS], med[3], cpu_med[3];
+    double t[3][MAX_ROUNDS], cpu[3][MAX_ROUNDS], med[3], cpu_med[3], speedup[3][MAX_ROUNDS];
     const unsigned threads[3] = {0, 1, 2}; /* index 0: single calls */
     size_t i, mismatches = 0, positive = 0;
     int r, k;
@@ -304,13 +306,15 @@ static size_t bench_query(const struct workload *w, enum query q, int rounds)
     }
     /* The single calls ran first in round 0: `single` holds their answers from then on. */
     for (i = 0; i < w->n; i++) positive += single[i] > 0;
+    for (r = 0; r < rounds; r++)
+        for (k = 1; k < 3; k++) speedup[k][r] = t[0][r] / t[k][r];
     for (k = 0; k < 3; k++) {
         med[k] = median(t[k], rounds);
         cpu_med[k] = median(cpu[k], rounds);
     }
     printf("| %s | %s | %zu | %.2f | %.2f | %.2f | %.2fx | %.2fx | %.3f | %.3f |\n", w->name,
            query_name[q], positive, 1e6 * med[0] / (double)w->n, 1e6 * med[1] / (double)w->n,
-           1e6 * med[2] / (double)w->n, med[0] / med[1], med[0] / med[2],
+           1e6 * med[2] / (double)w->n, median(speedup[1], rounds), median(speedup[2], rounds),
            cpu_med[1] / cpu_med[0], cpu_med[2] / cpu_med[0]);
     free(single);
     free(batch);
@@ -362,7 +366,8 @@ int main(int argc, char **argv)
     printf("control before: a CPU-bound loop on 2 threads runs %.2fx faster than on 1\n",
            machine_scaling());
     printf("%d rounds, median; wall-clock us per query; speed-up: time of the n single calls / "
-           "time of the batch; CPU: the process's CPU time for the batch / for the single calls\n\n",
+           "time of the batch in the same round; CPU: the process's CPU time for the batch / for "
+           "the single calls\n\n",
            rounds);
     printf("| workload | query | answers > 0 | single us | batch 1 thread us | batch 2 threads us "
            "| speed-up 1 thread | speed-up 2 threads | CPU 1 thread | CPU 2 threads |\n");

@@ -3,12 +3,14 @@
 //!
 //! Every argument is checked before any query runs, with the codes and in the order of the single
 //! queries, so that a batch either answers every pose pair or fails without answering. The poses are
-//! then shared out in blocks of consecutive pose pairs: each thread takes the next block when it has
-//! answered its last, the first blocks large and the later ones smaller (guided scheduling), so that
-//! threads finish together even when the cost of a query varies along the batch, and most
-//! consecutive poses are answered by the same thread. Each thread keeps its own result object, whose
-//! triangle cache (and, for exact distance, BVTT front) carries over from one pose to the next, as it
-//! would for a caller reusing one result for a sequence of single queries.
+//! then split into one run of consecutive pose pairs per thread; a thread answers its run from the
+//! front, and one that finishes early takes the back half of what another has not yet started
+//! (work stealing), so that threads finish together even when the cost of a query varies along the
+//! batch. Each thread keeps its own result object, whose triangle cache (and, for exact distance,
+//! BVTT front) carries over from one pose to the next, as it would for a caller reusing one result
+//! for a sequence of single queries: long runs of consecutive poses keep that carry-over, so that a
+//! batch along a motion path does no more work than the single calls (a thread meets a pose far
+//! from its last one only when it starts and when it steals).
 //!
 //! The threads are scoped std threads, started per batch: a batch is one fork-join over a slice,
 //! which they express directly (the threads borrow the models, the poses and disjoint answer
@@ -215,7 +217,7 @@ fn check_poses(m1: &Model, m2: &Model, poses: &[(Pose, Pose)]) -> Result<(), Err
 ///
 /// Returns the answers in query order, or the first error an answer returned (none is expected:
 /// the batch's arguments were checked). A panic in any thread is resumed on the calling thread
-/// after every thread has stopped; the others stop at their next block.
+/// after every thread has stopped; the others stop at their next chunk.
 pub(crate) fn answer_all<S, T>(
     n: usize,
     workers: Workers,
@@ -229,37 +231,34 @@ where
     out.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
     out.resize(n, T::default());
     let threads = workers.count(n);
-    let blocks = Blocks {
-        rest: Mutex::new((0, &mut out[..])),
-        threads,
-        stop: AtomicBool::new(false),
-    };
-    let work = || -> Result<(), Error> {
+    let shares = Shares::new(&mut out, threads);
+    let work = |me: usize| -> Result<(), Error> {
         let mut state = new_state();
-        while let Some((first, slots)) = blocks.next() {
+        while let Some((first, slots)) = shares.next(me) {
             for (k, slot) in slots.iter_mut().enumerate() {
                 *slot = answer(&mut state, first + k)?;
             }
         }
         Ok(())
     };
-    // Any panic stops the other threads at their next block, then is resumed here.
-    let guarded = || {
-        panic::catch_unwind(AssertUnwindSafe(&work)).inspect_err(|_| {
-            blocks.stop.store(true, Ordering::Relaxed);
+    // Any panic stops the other threads at their next chunk, then is resumed here.
+    let guarded = |me: usize| {
+        panic::catch_unwind(AssertUnwindSafe(|| work(me))).inspect_err(|_| {
+            shares.stop.store(true, Ordering::Relaxed);
         })
     };
     let outcomes = std::thread::scope(|s| {
         let started: Vec<_> = (1..threads)
-            .map(|_| {
-                s.spawn(|| {
+            .map(|me| {
+                let guarded = &guarded;
+                s.spawn(move || {
                     let mut outcome = None;
-                    (workers.enter)(&mut || outcome = Some(guarded()));
+                    (workers.enter)(&mut || outcome = Some(guarded(me)));
                     outcome
                 })
             })
             .collect();
-        let mut outcomes = vec![guarded()];
+        let mut outcomes = vec![guarded(0)];
         for t in started {
             // `guarded` catches every panic, so a thread ends normally with its outcome.
             match t.join() {
@@ -282,34 +281,87 @@ where
     first_error.map(|()| out)
 }
 
-/// The queries not yet handed out, shared by the threads of a batch.
-struct Blocks<'a, T> {
-    /// The index of the first query not handed out, and the answer slots from it on.
-    rest: Mutex<(usize, &'a mut [T])>,
-    threads: usize,
+/// A run of queries not yet started: the index of its first query and its answer slots.
+type Run<'a, T> = (usize, &'a mut [T]);
+
+/// The queries of a batch not yet started, as one run per thread.
+struct Shares<'a, T> {
+    /// Thread `k`'s run: it takes chunks from the front; a thread whose run is empty takes the
+    /// back half of the longest other run.
+    runs: Vec<Mutex<Run<'a, T>>>,
     /// Set when a thread panicked: the others take no more work.
     stop: AtomicBool,
 }
 
-impl<'a, T> Blocks<'a, T> {
-    /// The next block to answer: the index of its first query and its answer slots. A block is
-    /// half of a thread's share of what is left (at least one query): large blocks first keep
-    /// consecutive poses on one thread, small ones last let the threads finish together.
-    fn next(&self) -> Option<(usize, &'a mut [T])> {
+impl<'a, T> Shares<'a, T> {
+    /// `slots` split into `threads` runs of consecutive queries, as equal as can be.
+    fn new(mut slots: &'a mut [T], threads: usize) -> Shares<'a, T> {
+        let mut runs = Vec::with_capacity(threads);
+        let mut first = 0;
+        for k in 0..threads {
+            let size = slots.len() / (threads - k);
+            let (run, rest) = std::mem::take(&mut slots).split_at_mut(size);
+            runs.push(Mutex::new((first, run)));
+            first += size;
+            slots = rest;
+        }
+        Shares {
+            runs,
+            stop: AtomicBool::new(false),
+        }
+    }
+
+    /// Locks run `k`. Nothing can panic while a run is locked, but a poisoned lock still holds a
+    /// consistent run.
+    fn lock(&self, k: usize) -> std::sync::MutexGuard<'_, Run<'a, T>> {
+        self.runs[k].lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Thread `me`'s next chunk: the front quarter of its run (at least one query), so that it
+    /// locks its run a few dozen times per batch and leaves most of the run to be stolen. When its
+    /// run is empty it first steals the back half of the longest other run; `None` when every run
+    /// is empty.
+    fn next(&self, me: usize) -> Option<Run<'a, T>> {
         if self.stop.load(Ordering::Relaxed) {
             return None;
         }
-        // The lock is held for the split only; nothing can panic while it is held, but a poisoned
-        // lock still holds a consistent split.
-        let mut rest = self.rest.lock().unwrap_or_else(PoisonError::into_inner);
-        let (first, slots) = std::mem::take(&mut *rest);
-        if slots.is_empty() {
-            return None;
+        loop {
+            {
+                let mut run = self.lock(me);
+                let (first, slots) = std::mem::take(&mut *run);
+                if !slots.is_empty() {
+                    let size = slots.len().div_ceil(4);
+                    let (chunk, rest) = slots.split_at_mut(size);
+                    *run = (first + size, rest);
+                    return Some((first, chunk));
+                }
+            }
+            let stolen = self.steal(me)?;
+            *self.lock(me) = stolen;
         }
-        let size = (slots.len() / (2 * self.threads)).max(1);
-        let (block, later) = slots.split_at_mut(size);
-        *rest = (first + size, later);
-        Some((first, block))
+    }
+
+    /// The back half of the longest run other than `me`'s (all of it if it holds one query), taken
+    /// out of that run; `None` if every other run is empty. Only one run is locked at a time.
+    fn steal(&self, me: usize) -> Option<Run<'a, T>> {
+        loop {
+            let victim = (0..self.runs.len())
+                .filter(|&k| k != me)
+                .map(|k| (self.lock(k).1.len(), k))
+                .max()
+                .filter(|&(len, _)| len > 0)?
+                .1;
+            let mut run = self.lock(victim);
+            let (first, slots) = std::mem::take(&mut *run);
+            if slots.is_empty() {
+                // Emptied since it was measured: look again.
+                continue;
+            }
+            let keep = slots.len() / 2;
+            let (kept, taken) = slots.split_at_mut(keep);
+            *run = (first, kept);
+            return Some((first + keep, taken));
+        }
     }
 }
 
@@ -347,25 +399,77 @@ mod tests {
     }
 
     #[test]
-    fn blocks_shrink_and_cover_the_queries() {
+    fn chunks_cover_the_queries_in_order_on_one_thread() {
         let mut slots = vec![0u8; 1000];
-        let blocks = Blocks {
-            rest: Mutex::new((0, &mut slots[..])),
-            threads: 2,
-            stop: AtomicBool::new(false),
-        };
+        let shares = Shares::new(&mut slots, 1);
         let mut next = 0;
         let mut sizes = Vec::new();
-        while let Some((first, block)) = blocks.next() {
+        while let Some((first, chunk)) = shares.next(0) {
             assert_eq!(first, next);
-            next += block.len();
-            sizes.push(block.len());
+            next += chunk.len();
+            sizes.push(chunk.len());
         }
         assert_eq!(next, 1000);
         assert_eq!(sizes[0], 250);
         assert!(sizes.windows(2).all(|w| w[0] >= w[1]), "{sizes:?}");
-        // Few blocks: most consecutive queries stay on one thread.
         assert!(sizes.len() < 40, "{sizes:?}");
+    }
+
+    #[test]
+    fn a_thread_whose_run_is_done_steals_the_back_half_of_another() {
+        let mut slots = vec![0u8; 100];
+        let shares = Shares::new(&mut slots, 3);
+        // Runs of 33, 33 and 34 queries.
+        assert_eq!(shares.next(0).map(|(f, c)| (f, c.len())), Some((0, 9)));
+        while !shares.lock(0).1.is_empty() {
+            shares.next(0);
+        }
+        // Thread 0 steals from the longest other run (thread 2's, 66..100): its back half.
+        assert_eq!(shares.next(0).map(|(f, c)| (f, c.len())), Some((83, 5)));
+        assert_eq!(shares.lock(2).0, 66);
+        assert_eq!(shares.lock(2).1.len(), 17);
+        // Every query is handed out exactly once, whoever asks.
+        let mut seen: Vec<bool> = (0..100).map(|k| k < 33 || (83..88).contains(&k)).collect();
+        let mut turn = 0;
+        loop {
+            let me = [1, 2, 0][turn % 3];
+            turn += 1;
+            let Some((first, chunk)) = shares.next(me) else {
+                break;
+            };
+            for (i, s) in seen.iter_mut().enumerate().skip(first).take(chunk.len()) {
+                assert!(!*s, "query {i} handed out twice");
+                *s = true;
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+
+    #[test]
+    fn threads_answer_long_runs_of_consecutive_queries() {
+        // Each thread's state is the last query it answered; a query that does not follow it is
+        // the start of a run. Runs start only where a thread starts or steals, a few per thread.
+        if cores() < 2 {
+            return;
+        }
+        let starts = Mutex::new(0usize);
+        struct Last<'a>(Option<usize>, &'a Mutex<usize>);
+        answer_all(
+            1000,
+            workers(2),
+            || Last(None, &starts),
+            |last, i| {
+                if last.0.map(|l| l + 1) != Some(i) {
+                    *last.1.lock().unwrap() += 1;
+                }
+                last.0 = Some(i);
+                std::thread::sleep(std::time::Duration::from_micros(20));
+                Ok(0u8)
+            },
+        )
+        .unwrap();
+        let starts = starts.into_inner().unwrap();
+        assert!((2..=16).contains(&starts), "{starts} runs");
     }
 
     #[test]
