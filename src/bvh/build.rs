@@ -300,7 +300,7 @@ fn records(
 fn build_subtree<'a>(
     input: &Input,
     scratch: &mut Scratch,
-    sub: Subtree<'a>,
+    mut sub: Subtree<'a>,
     pool: Option<&Pool<Subtree<'a>>>,
 ) -> Result<(), Error> {
     let oom = |_| Error::ModelOutOfMemory;
@@ -321,8 +321,21 @@ fn build_subtree<'a>(
         scratch.lists.extend_from_slice(&sub.verts);
         scratch.counts.extend_from_slice(&sub.counts);
     }
-    drop(sub.verts);
-    drop(sub.counts);
+    // Freed before the build below, which may take long: the list is on the stack now.
+    drop(std::mem::take(&mut sub.verts));
+    drop(std::mem::take(&mut sub.counts));
+    build_listed(input, scratch, sub, bottom, pool)
+}
+
+/// Builds `sub`'s nodes, depth first, once its root's vertex list is on the scratch stack from
+/// `list` on; takes the list (and every list above it) off the stack again.
+fn build_listed<'a>(
+    input: &Input,
+    scratch: &mut Scratch,
+    sub: Subtree<'a>,
+    list: usize,
+    pool: Option<&Pool<Subtree<'a>>>,
+) -> Result<(), Error> {
     let r = node(
         input,
         scratch,
@@ -332,11 +345,11 @@ fn build_subtree<'a>(
         sub.first_leaf,
         sub.depth,
         &sub.frame,
-        bottom,
+        list,
         pool,
     );
-    scratch.lists.truncate(bottom);
-    scratch.counts.truncate(bottom);
+    scratch.lists.truncate(list);
+    scratch.counts.truncate(list);
     r
 }
 
@@ -662,25 +675,11 @@ fn node<'a>(
         };
         // Offered before its vertex list is made: a thread that takes it lists the vertices
         // itself (the same list, which depends only on the records), while this one goes on.
-        let Some(sub) = offer_subtree(sub, pool) else {
-            continue;
-        };
-        let start = scratch.lists.len();
-        list_vertices(scratch, sub.recs, sub.base);
-        node(
-            input,
-            scratch,
-            sub.recs,
-            sub.nodes,
-            sub.base,
-            sub.first_leaf,
-            sub.depth,
-            &sub.frame,
-            start,
-            pool,
-        )?;
-        scratch.lists.truncate(start);
-        scratch.counts.truncate(start);
+        if let Some(sub) = offer_subtree(sub, pool) {
+            let start = scratch.lists.len();
+            list_vertices(scratch, sub.recs, sub.base);
+            build_listed(input, scratch, sub, start, pool)?;
+        }
     }
     Ok(())
 }
