@@ -7,13 +7,16 @@
 #     with -Wall -Wextra -pedantic -Werror;
 #   - the PQP 1.3 programs of c_api_tests/pqp13 (programs.txt), each in every standard listed,
 #     with pkg-config, and with find_package(pqp) in its first;
-#   - programs built with `pkg-config --cflags --libs pqp`, with pkg-config --static against
-#     libpqp.a, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
+#   - the installed libraries carry no debug information (when installed stripped);
+#   - programs built with `pkg-config --cflags --libs pqp` (which run without LD_LIBRARY_PATH:
+#     the .pc file gives an rpath for a prefix outside the loader's path), with
+#     `-static $(pkg-config --static --libs pqp)` (no dynamic section at all), with libpqp.a and
+#     pkg-config --static's private libraries, with find_package(pqp) + PQP::PQP (and PQP::PQP_static), and PQP 1.3 style with
 #     -I<prefix>/include -L<prefix>/lib -lPQP, all of which must run and answer correctly.
 #
-# Usage: consumer-test.sh BUILD_DIR CONSUMER_SOURCE_DIR CC CXX CMAKE [LIBDIR [INCLUDEDIR]]
+# Usage: consumer-test.sh BUILD_DIR CONSUMER_SOURCE_DIR CC CXX CMAKE [LIBDIR [INCLUDEDIR [STRIP]]]
 # (LIBDIR and INCLUDEDIR relative to the prefix, as CMAKE_INSTALL_LIBDIR/INCLUDEDIR; default
-# lib and include).
+# lib and include; STRIP is ON when the install strips the libraries, the default).
 set -euo pipefail
 
 build_dir=$1
@@ -23,6 +26,7 @@ cxx=$4
 cmake=$5
 libdir=${6:-lib}
 includedir=${7:-include}
+strip=${8:-ON}
 
 # The repository (for the PQP 1.3 programs of c_api_tests/pqp13 and the brute-force referee).
 repo=$(cd "$consumer_src/../.." && pwd)
@@ -62,6 +66,16 @@ done
 [[ $(readlink -f "$lib/libPQP.a") == $(readlink -f "$lib/libpqp.a") ]] || fail "libPQP.a does not lead to libpqp.a"
 ls -l "$lib"
 
+step "debug information"
+if [[ $strip == ON ]]; then
+    for f in libpqp.so.1.0.0 libpqp.a; do
+        if readelf -S "$lib/$f" | grep -q '\.debug_info'; then fail "$f carries debug information"; fi
+    done
+    echo "stripped: ok"
+else
+    echo "installed unstripped (PQP_INSTALL_STRIP=OFF)"
+fi
+
 step "soname"
 readelf -d "$lib/libpqp.so.1.0.0" | grep SONAME
 readelf -d "$lib/libpqp.so.1.0.0" | grep -q 'Library soname: \[libpqp\.so\.1\]' || fail "soname is not libpqp.so.1"
@@ -94,7 +108,17 @@ pkg-config --cflags --libs pqp
 # shellcheck disable=SC2046 # word splitting of pkg-config's flags is intended
 "$cc" -std=c99 "${warn[@]}" src/consumer.c $(pkg-config --cflags --libs pqp) -lm -o consumer_pkg
 readelf -d consumer_pkg | grep -q 'NEEDED.*\[libpqp\.so\.1\]' || fail "consumer_pkg does not need libpqp.so.1"
-LD_LIBRARY_PATH=$lib ./consumer_pkg
+# The prefix is outside the loader's path: the rpath from the .pc file finds the library.
+readelf -d consumer_pkg | grep -qE "(RPATH|RUNPATH).*\[$lib\]" || fail "consumer_pkg has no rpath to $lib"
+env -u LD_LIBRARY_PATH ./consumer_pkg
+
+step "-static \$(pkg-config --static --libs pqp): a static program"
+# shellcheck disable=SC2046 # word splitting of pkg-config's flags is intended
+"$cc" -std=c99 "${warn[@]}" src/consumer.c $(pkg-config --cflags pqp) -static \
+    $(pkg-config --static --libs pqp) -o consumer_fully_static 2>static.log ||
+    { cat static.log; fail "static link with pkg-config --static"; }
+if readelf -d consumer_fully_static | grep -q NEEDED; then fail "consumer_fully_static needs a shared library"; fi
+./consumer_fully_static
 
 step "pkg-config --static, against libpqp.a"
 static_libs=$(pkg-config --static --libs-only-l pqp | sed -e 's/-lpqp\b//')
