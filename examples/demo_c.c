@@ -10,6 +10,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+/* Where the default models are: the build gives the absolute path of examples/models, so the
+ * program finds them from any working directory. */
+#ifndef PQP_MODELS_DIR
+#define PQP_MODELS_DIR "examples/models"
+#endif
+
 /* Reads a .tris file into a new built model (triangle ids are indices), or returns NULL. */
 static pqp_model *load(const char *path)
 {
@@ -74,8 +80,8 @@ static void print_distance(const char *what, const pqp_distance_result *r)
 
 int main(int argc, char **argv)
 {
-    const char *bunny_path = argc > 1 ? argv[1] : "examples/models/bunny.tris";
-    const char *torus_path = argc > 2 ? argv[2] : "examples/models/torus.tris";
+    const char *bunny_path = argc > 1 ? argv[1] : PQP_MODELS_DIR "/bunny.tris";
+    const char *torus_path = argc > 2 ? argv[2] : PQP_MODELS_DIR "/torus.tris";
     /* Poses: R row by row (columns are the model's axes in the world), T a translation. */
     const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     const double origin[3] = {0, 0, 0};

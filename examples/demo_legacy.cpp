@@ -11,6 +11,12 @@
 #include <stdlib.h>
 #include <time.h>
 
+// Where the default models are: the build gives the absolute path of examples/models, so the
+// program finds them from any working directory.
+#ifndef PQP_MODELS_DIR
+#define PQP_MODELS_DIR "examples/models"
+#endif
+
 static double now_secs()
 {
     struct timespec ts;
@@ -64,8 +70,8 @@ static void rot_y(PQP_REAL R[3][3], double a)
 
 int main(int argc, char **argv)
 {
-    const char *bunny_path = argc > 1 ? argv[1] : "examples/models/bunny.tris";
-    const char *torus_path = argc > 2 ? argv[2] : "examples/models/torus.tris";
+    const char *bunny_path = argc > 1 ? argv[1] : PQP_MODELS_DIR "/bunny.tris";
+    const char *torus_path = argc > 2 ? argv[2] : PQP_MODELS_DIR "/torus.tris";
 
     PQP_Model bunny, torus;
     double t0 = now_secs();

@@ -10,6 +10,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+/* Where the default models are: the build gives the absolute path of examples/models, so the
+ * program finds them from any working directory. */
+#ifndef PQP_MODELS_DIR
+#define PQP_MODELS_DIR "examples/models"
+#endif
+
 enum { W = 72, H = 36 };
 
 /* Reads a .tris file into a new built model (triangle ids are indices), or returns NULL. */
@@ -42,7 +48,7 @@ static pqp_model *load(const char *path)
 
 int main(int argc, char **argv)
 {
-    const char *path = argc > 1 ? argv[1] : "examples/models/bunny.tris";
+    const char *path = argc > 1 ? argv[1] : PQP_MODELS_DIR "/bunny.tris";
     /* The model as it is (the bunny fits in [-0.8, 0.8]^2 x [-0.6, 0.6]), seen from z = 3. */
     const double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, T[3] = {0, 0, 0};
     static double origins[3 * W * H], directions[3 * W * H];

@@ -188,3 +188,8 @@ pub use query::{
 };
 pub use query::{ContactTime, Motion, time_of_contact};
 pub use query::{RayHit, ray_cast, ray_cast_batch};
+
+/// The README's Rust examples, run as doc tests (tests/readme.rs runs its C and C++ ones).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
