@@ -1432,7 +1432,7 @@ void peer_tolerance(PeerCase& c, const std::string& workload, const Options& o, 
     libs.push_back({kPqp13, [&](size_t i) { peer_q(i); }});
 #endif
 #ifdef PQP_BENCH_WITH_COAL
-    // Coal has no tolerance query: an exact distance query, then d <= tol (as FCL in section 1).
+    // Coal has no tolerance query: an exact distance query, then d <= tol (as for FCL).
     auto coal_q = [&](size_t i) {
         const auto& p = c.poses[i];
         return coalpeer::distance(p.first.R.data(), p.first.T.data(), c.coal1.m, p.second.R.data(), p.second.T.data(),

@@ -1,4 +1,4 @@
-/* Self-collision of a closed mesh with no self-intersection (BENCHMARKS.md, section 12): a torus of
+/* Self-collision of a closed mesh with no self-intersection (BENCHMARKS.md): a torus of
  * n x n/2 quads (2 triangles each; n = 1000 gives 1,000,000 triangles) through pqp_self_collide,
  * all contacts. Prints each round's wall-clock and thread CPU time, and their medians. The CPU time
  * is what the query costs on a machine shared with other work.

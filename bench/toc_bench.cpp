@@ -1,4 +1,4 @@
-// Time of first contact (BENCHMARKS.md, section 18): pqp_time_of_contact against FCL 0.7's
+// Time of first contact (BENCHMARKS.md): pqp_time_of_contact against FCL 0.7's
 // continuous collision on the same motions (c_tests/toc_fcl.hpp makes FCL's InterpMotion equal to
 // ours): its conservative advancement on BVHModel<RSS> and BVHModel<OBBRSS>, and its naive method
 // (collision queries at 1000 evenly spaced times). Motions: the falling tori of /work/shared/models

@@ -176,7 +176,7 @@ pub(crate) fn prefetch_line(p: *const u8) {
 /// about 2013; the check is a cached flag). Those copies do the same IEEE operations in the same
 /// order as the portable ones (Rust never fuses a multiply and an add on its own), so every answer
 /// and count is bit for bit the same either way; they only take fewer instructions (three-operand
-/// forms, fewer register copies and spills). Measured: BENCHMARKS.md, section 24.
+/// forms, fewer register copies and spills).
 #[inline(always)]
 pub(crate) fn use_avx2() -> bool {
     #[cfg(test)]

@@ -180,7 +180,7 @@ impl OverlapVolume for Obb {
     /// evaluated: the axes go in three groups (a's faces, b's faces, the edge pairs), each
     /// evaluated whole, with no branch per axis. Run by a copy written for AVX2 where the
     /// processor has it (`overlap_posed_avx2`: the same operations in the same order, about
-    /// half the instructions; the collision queries 13-16% faster, BENCHMARKS.md section 42),
+    /// half the instructions, which made the collision queries 13-16% faster),
     /// else by the portable `overlap_posed_portable`.
     #[inline]
     fn overlap_posed(a: &Self, b: &PosedObb, _rel: &RelPose) -> bool {

@@ -356,7 +356,7 @@ fn build_listed<'a>(
 /// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`. Unlike a load's arrays
 /// (`saved.rs`), the build's are not offered huge pages: with the kernel's default `defrag`
 /// setting a huge-page fault may compact memory synchronously, and in measurements the
-/// single-thread 1M build became 1.2-1.3x slower and erratic with them (BENCHMARKS.md section 25).
+/// single-thread 1M build became 1.2-1.3x slower and erratic with them.
 fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {
     let mut v = Vec::new();
     v.try_reserve_exact(n)
@@ -1238,7 +1238,7 @@ fn fit_volumes(
 /// point, without the test that skips the points clearly inside: in a small node most points are
 /// on a boundary (about a third of a 40,000-triangle build's points take the exact computation,
 /// nearly all of them in small nodes), so the test rarely saves work and its branch is
-/// unpredictable. 16 gave the fewest instructions (BENCHMARKS.md, section 48).
+/// unpredictable. 16 gave the fewest instructions of the sizes tried.
 const SMALL_COVER: usize = 16;
 
 /// Bound on the rounding of a volume's offsets from a point (see `fit_volumes`), relative to the

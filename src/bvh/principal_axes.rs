@@ -80,7 +80,8 @@ pub(super) fn symmetric_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
 /// From the parent's frame one sweep is nearly always enough (3.2 rotations a node instead of 6.2
 /// on the 40,000-triangle sphere). Where the gap is small (near-repeated eigenvalues, whose
 /// eigenvectors the matrix's rounding decides) the sweeps go on exactly as in
-/// [`symmetric_eigen`], so such a node gets the same frame as from it (BENCHMARKS.md, section 35).
+/// [`symmetric_eigen`], so such a node gets the same frame as from it, and the hierarchy is the
+/// same whichever computes it.
 pub(super) fn frame_eigen(a: &Mat3) -> ([f64; 3], Mat3) {
     jacobi(a, true)
 }

@@ -499,8 +499,8 @@ impl RayTree {
 /// `nodes` copied into a new array, offered huge pages before it is written.
 ///
 /// A search on a large model reads nodes scattered over tens of megabytes: with 4 KiB pages,
-/// most of those reads also miss the address translation cache (measured in BENCHMARKS.md
-/// section 27). The whole 2 MiB pages of a fresh allocation of at least two are advised as huge
+/// most of those reads also miss the address translation cache, which huge pages (one entry
+/// per 2 MiB) make rarer. The whole 2 MiB pages of a fresh allocation of at least two are advised as huge
 /// pages ([`advise_huge_pages`], shared with loading saved models), before the nodes are
 /// written to it.
 fn huge_page_copy(nodes: &[WideNode]) -> Result<Vec<WideNode>, Error> {

@@ -284,11 +284,10 @@ fn centre(b: &Bvh, r: NodeRef) -> Vec3 {
 /// A first-contact search ends at the first overlapping triangle pair, so the order in which it
 /// visits overlapping node pairs decides its work. Surfaces that cross do so in the region the two
 /// volumes share, and the child nearer the other node's centre is the one more likely to reach
-/// into it: visited first, it finds a contact after fewer tests (BENCHMARKS.md section 39: on the
-/// bunny-torus poses, a median over poses of 35 bound tests per query instead of 126).
+/// into it: visited first, it finds a contact after fewer tests (on the bunny-torus poses, a median over poses of 35 bound tests per query instead of 126).
 /// The answer stays a pair the all-contacts search reports; which one may change. A search
 /// without a contact visits every overlapping pair whatever the order, and pays for the ordering
-/// (about 12% more time on the bunny poses without contact, BENCHMARKS.md section 39).
+/// (about 12% more time on the bunny poses without contact).
 #[inline(always)]
 fn near_first(b: &Bvh, r: NodeRef, other: &Vec3) -> [NodeRef; 2] {
     let [c0, c1] = b.children(r);

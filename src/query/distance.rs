@@ -189,7 +189,8 @@ pub fn distance_into(
         search.record_front(result.front.take_spare());
     }
     // An approximate query (both errors nonzero: see `cutoff` below) keeps most of the children
-    // it bounds: prefetching for them before their bounds pays there (section 50).
+    // it bounds: prefetching for them before their bounds pays there, and costs an exact query,
+    // which prunes many.
     search.prefetch_ahead(rel_err > 0.0 && abs_err > 0.0);
     let front = result.front.start(&asked);
     let from_front = front.is_some();

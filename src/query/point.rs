@@ -250,7 +250,7 @@ fn keep(t: usize, c: ClosestPoints, cutoff: &mut f64, best: &mut Option<Nearest>
 /// triangles' frames, 248 B/triangle, built on the first point query): on the
 /// bunny (2,204 triangles) it took half the time of the search of the swept sphere volumes, on a
 /// million-triangle closed sphere three times as long (a box's bound is 0 for the many points
-/// inside the boxes, where a swept sphere volume's is not). BENCHMARKS.md, section 26.
+/// inside the boxes, where a swept sphere volume's is not).
 const BOX_SEARCH_TRIANGLES: usize = 8192;
 
 /// The allowance of the triangles' frames' bound ([`TriangleBounds::distance_squared`]), relative

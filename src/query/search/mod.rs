@@ -167,8 +167,7 @@ impl<'a> ClosestSearch<'a> {
     /// the prefetch for each kept child after them. The loads get a whole expansion's time, but
     /// are asked for children that are then pruned too: it pays where most children survive
     /// their bound (an approximate distance query on the nested shells, about 3% faster) and
-    /// costs where many are pruned (3-5% on an exact one on the spheres; BENCHMARKS.md, sections
-    /// 37 and 50).
+    /// costs where many are pruned (3-5% on an exact one on the spheres).
     pub fn prefetch_ahead(&mut self, on: bool) {
         self.ahead = on && self.prefetch;
     }

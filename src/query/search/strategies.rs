@@ -25,7 +25,7 @@ impl ClosestSearch<'_> {
     /// pairs are below the cutoff (the nested shells). With them, a leaf pair under a leaf and an
     /// inner node goes straight to its triangles (see [`visit_unordered`]): bounding it would cost
     /// about as much as a triangle test that the planes settle, and would seldom prune where the
-    /// cutoff stays put. (Figures: BENCHMARKS.md, section 8.)
+    /// cutoff stays put.
     ///
     /// [`visit_unordered`]: ClosestSearch::visit_unordered
     // Each strategy is inlined into both copies of `run` (see `math::avx2_or_portable`).
