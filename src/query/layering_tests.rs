@@ -1,4 +1,4 @@
-//! Keeps the module graph one-way (README, "Architecture"): reads every `use` and every
+//! Keeps the module graph one-way (docs/architecture.md): reads every `use` and every
 //! `crate::`/`super::`/`self::` path in `src/` (comments and `mod tests` blocks left out), maps
 //! each to the module (file) it names, and checks that
 //! - the layers depend downwards only: C ABI -> queries -> model -> hierarchy -> bounding volumes
