@@ -35,6 +35,24 @@
  * Threads: a built model is immutable; any number of threads may query the same models at once.
  * A result object must not be used by two threads at once. Model build calls (begin, add_tri,
  * end, destroy) must not run concurrently with anything else on the same model.
+ *
+ * Contents: the constants (error codes, flags, volume and search kinds) and types come first,
+ * then the functions, by topic, in this order:
+ *   1. Lifecycle and build: pqp_model_create, _destroy, _clone, _begin, _add_tri, _end,
+ *      _end_threads, _set_volume, _set_collision_volume, _num_tris, _memory_usage, _is_built,
+ *      _build_state; pqp_error_string, pqp_version.
+ *   2. Pair queries: pqp_collide and pqp_collide_result_*, pqp_self_collide, pqp_distance,
+ *      pqp_distance_search, pqp_search_options_default and pqp_distance_result_*,
+ *      pqp_tolerance, pqp_tolerance_search and pqp_tolerance_result_*, pqp_within_distance.
+ *   3. Point and ray: pqp_closest_point, pqp_signed_distance, pqp_ray_cast, pqp_ray_cast_batch.
+ *   4. Primitives as models: pqp_model_set_sphere, _set_capsule, _set_box.
+ *   5. Motion: pqp_model_refit, pqp_time_of_contact.
+ *   6. Batches: pqp_collide_batch, pqp_distance_batch, pqp_tolerance_batch.
+ *   7. Saved models: pqp_model_serialize, pqp_model_deserialize.
+ *   8. Convex polyhedra: pqp_convex_model_*, pqp_convex_cache_*, pqp_convex_result_*,
+ *      pqp_convex_distance, pqp_convex_intersect, pqp_convex_penetration.
+ *   9. PQP 1.3's view: pqp_triangle_distance, pqp_segment_distance (TriDist.h), pqp_model_tris,
+ *      pqp_model_bvs (and _float), pqp_bv_fit, pqp_bv_overlap, pqp_bv_distance.
  */
 
 #ifndef PQP_PQP_H
@@ -276,6 +294,124 @@ typedef struct pqp_model pqp_model;
 typedef struct pqp_tolerance_result pqp_tolerance_result;
 
 /**
+ * A colliding triangle pair: the id of the triangle of model 1 and of model 2, as given to
+ * pqp_model_add_tri.
+ */
+typedef struct pqp_contact_pair {
+    /**
+     * Id of the triangle of model 1.
+     */
+    int id1;
+    /**
+     * Id of the triangle of model 2.
+     */
+    int id2;
+} pqp_contact_pair;
+
+/**
+ * How pqp_distance_search and pqp_tolerance_search search the bounding-volume test tree. Every
+ * strategy gives the same exact distance; they differ in speed (see BENCHMARKS.md).
+ * pqp_search_options_default fills one with the default, which pqp_distance and pqp_tolerance use.
+ */
+typedef struct pqp_search_options {
+    /**
+     * PQP_SEARCH_AUTO, PQP_SEARCH_DEPTH_FIRST, PQP_SEARCH_BREADTH_FIRST or PQP_SEARCH_PRIORITY.
+     */
+    int strategy;
+    /**
+     * PQP_SEARCH_PRIORITY (and PQP_SEARCH_AUTO when it chooses it) only: the most pending pairs
+     * the queue holds (pairs that do not fit are searched depth-first at once, as PQP 1.3 did);
+     * 0 for unbounded. Must not be negative.
+     */
+    int qsize;
+    /**
+     * 1: start from the closest triangle pair of the last query on the same two models, kept in
+     * the result object (triangle caching), and for a priority-directed distance query after a
+     * small motion from that query's BVTT front (front tracking); 0: start afresh.
+     */
+    int triangle_cache;
+} pqp_search_options;
+
+/**
+ * The answer of pqp_closest_point.
+ */
+typedef struct pqp_point_result {
+    /**
+     * Distance from the point to the posed model; INFINITY if beyond max_distance.
+     */
+    double distance;
+    /**
+     * Closest point of the model, world coordinates; NaN (all three) if beyond max_distance.
+     */
+    double point[3];
+    /**
+     * Caller's id of the triangle holding it; -1 if beyond max_distance.
+     */
+    int triangle;
+} pqp_point_result;
+
+/**
+ * Where a ray first meets a model (pqp_ray_cast, pqp_ray_cast_batch).
+ *
+ * Accuracy: point lies within 1e-14 * (|origin| + |T| + m) of the hit triangle, m being the
+ * model's largest vertex coordinate (in its frame): it is a point of the triangle up to the
+ * rounding of the coordinates.
+ * Along the ray the error grows as the ray grazes the triangle (divided by the sine of the angle
+ * between the ray and the triangle's plane).
+ */
+typedef struct pqp_ray_hit {
+    /**
+     * The hit is at origin + t * direction, 0 <= t <= max_t, in units of the direction given;
+     * INFINITY if no hit in [0, max_t].
+     */
+    double t;
+    /**
+     * The hit point, world coordinates (NaN if no hit).
+     */
+    double point[3];
+    /**
+     * The unit normal of the hit triangle, (p2 - p1) x (p3 - p1) with its vertices in the order
+     * given to pqp_model_add_tri, world coordinates (NaN if no hit). It points to either side of
+     * the ray: triangles are hit from both sides.
+     */
+    double normal[3];
+    /**
+     * The caller's id of the hit triangle; -1 if no hit.
+     */
+    int triangle;
+} pqp_ray_hit;
+
+/**
+ * The answer of pqp_time_of_contact.
+ */
+typedef struct pqp_contact_time {
+    /**
+     * 1 if the models come within tolerance during the motion.
+     */
+    int contact;
+    /**
+     * The first such time in [0, 1]; INFINITY if none.
+     */
+    double toc;
+    /**
+     * Model 1's triangle (its id) of the closest pair at toc, within tolerance; -1 if none.
+     */
+    int id1;
+    /**
+     * Model 2's triangle (its id) of the closest pair at toc; -1 if none.
+     */
+    int id2;
+    /**
+     * The closest point on model 1 at toc, world coordinates; NaN (all three) if none.
+     */
+    double point1[3];
+    /**
+     * The closest point on model 2 at toc, world coordinates; NaN (all three) if none.
+     */
+    double point2[3];
+} pqp_contact_time;
+
+/**
  * A triangle as PQP 1.3's `Tri` holds it (pqp_model_tris): its vertices and the id given to
  * pqp_model_add_tri.
  */
@@ -402,124 +538,6 @@ typedef struct pqp_bv_float {
      */
     int first_child;
 } pqp_bv_float;
-
-/**
- * A colliding triangle pair: the id of the triangle of model 1 and of model 2, as given to
- * pqp_model_add_tri.
- */
-typedef struct pqp_contact_pair {
-    /**
-     * Id of the triangle of model 1.
-     */
-    int id1;
-    /**
-     * Id of the triangle of model 2.
-     */
-    int id2;
-} pqp_contact_pair;
-
-/**
- * How pqp_distance_search and pqp_tolerance_search search the bounding-volume test tree. Every
- * strategy gives the same exact distance; they differ in speed (see BENCHMARKS.md).
- * pqp_search_options_default fills one with the default, which pqp_distance and pqp_tolerance use.
- */
-typedef struct pqp_search_options {
-    /**
-     * PQP_SEARCH_AUTO, PQP_SEARCH_DEPTH_FIRST, PQP_SEARCH_BREADTH_FIRST or PQP_SEARCH_PRIORITY.
-     */
-    int strategy;
-    /**
-     * PQP_SEARCH_PRIORITY (and PQP_SEARCH_AUTO when it chooses it) only: the most pending pairs
-     * the queue holds (pairs that do not fit are searched depth-first at once, as PQP 1.3 did);
-     * 0 for unbounded. Must not be negative.
-     */
-    int qsize;
-    /**
-     * 1: start from the closest triangle pair of the last query on the same two models, kept in
-     * the result object (triangle caching), and for a priority-directed distance query after a
-     * small motion from that query's BVTT front (front tracking); 0: start afresh.
-     */
-    int triangle_cache;
-} pqp_search_options;
-
-/**
- * The answer of pqp_closest_point.
- */
-typedef struct pqp_point_result {
-    /**
-     * Distance from the point to the posed model; INFINITY if beyond max_distance.
-     */
-    double distance;
-    /**
-     * Closest point of the model, world coordinates; NaN (all three) if beyond max_distance.
-     */
-    double point[3];
-    /**
-     * Caller's id of the triangle holding it; -1 if beyond max_distance.
-     */
-    int triangle;
-} pqp_point_result;
-
-/**
- * Where a ray first meets a model (pqp_ray_cast, pqp_ray_cast_batch).
- *
- * Accuracy: point lies within 1e-14 * (|origin| + |T| + m) of the hit triangle, m being the
- * model's largest vertex coordinate (in its frame): it is a point of the triangle up to the
- * rounding of the coordinates.
- * Along the ray the error grows as the ray grazes the triangle (divided by the sine of the angle
- * between the ray and the triangle's plane).
- */
-typedef struct pqp_ray_hit {
-    /**
-     * The hit is at origin + t * direction, 0 <= t <= max_t, in units of the direction given;
-     * INFINITY if no hit in [0, max_t].
-     */
-    double t;
-    /**
-     * The hit point, world coordinates (NaN if no hit).
-     */
-    double point[3];
-    /**
-     * The unit normal of the hit triangle, (p2 - p1) x (p3 - p1) with its vertices in the order
-     * given to pqp_model_add_tri, world coordinates (NaN if no hit). It points to either side of
-     * the ray: triangles are hit from both sides.
-     */
-    double normal[3];
-    /**
-     * The caller's id of the hit triangle; -1 if no hit.
-     */
-    int triangle;
-} pqp_ray_hit;
-
-/**
- * The answer of pqp_time_of_contact.
- */
-typedef struct pqp_contact_time {
-    /**
-     * 1 if the models come within tolerance during the motion.
-     */
-    int contact;
-    /**
-     * The first such time in [0, 1]; INFINITY if none.
-     */
-    double toc;
-    /**
-     * Model 1's triangle (its id) of the closest pair at toc, within tolerance; -1 if none.
-     */
-    int id1;
-    /**
-     * Model 2's triangle (its id) of the closest pair at toc; -1 if none.
-     */
-    int id2;
-    /**
-     * The closest point on model 1 at toc, world coordinates; NaN (all three) if none.
-     */
-    double point1[3];
-    /**
-     * The closest point on model 2 at toc, world coordinates; NaN (all three) if none.
-     */
-    double point2[3];
-} pqp_contact_time;
 
 #ifdef __cplusplus
 extern "C" {
@@ -704,202 +722,23 @@ int pqp_model_is_built(const struct pqp_model *m);
 int pqp_model_end_threads(struct pqp_model *m, unsigned int threads);
 
 /**
- * Moves the triangles of a built model and refits its bounding-volume hierarchy, without
- * rebuilding it: for meshes that deform (cloth, soft bodies, animated characters) and keep their
- * triangles and ids.
+ * Describes a status code.
  *
- * Every triangle keeps its id and its place in the hierarchy; each volume keeps the frame it was
- * built with and gets new extents around its children, bottom-up, in O(n) (4 to 8 times faster
- * than pqp_model_end; see BENCHMARKS.md, Refit). Every query stays exact after a refit. The
- * volumes are looser than a rebuild's, and queries do more work: 1.2 to 2.5 times a rebuilt
- * model's when the mesh stretches (an inflating sphere), up to 8 times for distance queries when
- * its patches turn (a bending sheet; collision stayed within 1.4 times). When to rebuild instead
- * (pqp_model_begin, pqp_model_add_tri, pqp_model_end): when the queries after each deformation
- * are many (a rebuild of an 80,000-triangle bending sheet paid back after about 600 distance
- * queries), or when the queries' bound-test counts (pqp_distance_result_num_bv_tests) reach
- * about twice what they were after the last build.
- *
- * Distance and tolerance results that cached m's old shape (closest pairs, search fronts) ignore
- * the cache on their next query. Arrays from pqp_model_tris and pqp_model_bvs (and their float
- * forms) are invalid after a successful refit: ask again.
- *
- * @param m          the model (built).
- * @param triangles  9 * num_tris doubles: for each triangle, in the order the triangles were added,
- *                   its new p1, p2 and p3 (x, y, z each).
- * @param num_tris   the number of triangles; must be the model's (pqp_model_num_tris).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m or triangles is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
- *         not built; PQP_ERR_INVALID_ARGUMENT if num_tris is not the model's count;
- *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
- *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
- *         magnitude; PQP_ERR_MODEL_OUT_OF_MEMORY if the new arrays could not be allocated;
- *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
- * Thread safety: as the build calls, must not run concurrently with any other call using m
- *                (queries included).
- */
-int pqp_model_refit(struct pqp_model *m, const double *triangles, size_t num_tris);
-
-/**
- * PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
- * id, as double.
- *
- * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
- * later calls return the same array. While a model is being built it holds the triangles added so
- * far; a triangle refused by pqp_model_add_tri is not in it.
- *
- * @param m         the model, in any state.
- * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
- *                  any error). It stays valid, and its contents unchanged, until the next
- *                  pqp_model_begin, pqp_model_add_tri, pqp_model_end or
- *                  pqp_model_refit on m, or pqp_model_destroy(m).
- * @param num_tris  receives the number of triangles (0 on any error).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m, tris or num_tris is NULL;
- *         PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated; PQP_ERR_INTERNAL on an
- *         internal fault.
- * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
- *                all get the same array), not with build calls on m.
- */
-int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *num_tris);
-
-/**
- * PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
- * layout and frames (see pqp_bv).
- *
- * There are exactly 2 n - 1 volumes for n triangles. `b[0]` is the root. The children of a volume
- * are at first_child and first_child + 1, both after it; they were given out depth first, as PQP
- * did (when a volume is expanded its two children take the next two free slots, then the first
- * child's subtree is laid out before the second's). A leaf's first_child is -(t + 1), t being its
- * triangle's index in pqp_model_tris (the order added); a one-triangle model has one volume, a
- * leaf with first_child -1. Each volume contains its triangles. Inner volumes are those the
- * queries use; a leaf's are the rectangle around its triangle and the box on that rectangle's
- * axes.
- *
- * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
- * later calls return the same array.
- *
- * @param m        the model.
- * @param bvs      receives the array (owned by m; NULL on any error). It stays valid, and its
- *                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri,
- *                 pqp_model_end or pqp_model_refit on m, or pqp_model_destroy(m).
- * @param num_bvs  receives the number of volumes (0 on any error).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
- *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
- *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
- *         PQP_ERR_INTERNAL on an internal fault.
- * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
- *                all get the same array), not with build calls on m.
- */
-int pqp_model_bvs(const struct pqp_model *m, const struct pqp_bv **bvs, int *num_bvs);
-
-/**
- * As pqp_model_tris, with float coordinates (pqp_tri_float): for code compiled with PQP_REAL
- * float. The values are pqp_model_tris's rounded to float. Kept apart from the double array.
- *
- * @param m         the model, in any state.
- * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
- *                  any error), valid as pqp_model_tris's.
- * @param num_tris  receives the number of triangles (0 on any error).
- * @return PQP_OK, or as pqp_model_tris (PQP_ERR_NULL_POINTER, PQP_ERR_MODEL_OUT_OF_MEMORY,
- *         PQP_ERR_INTERNAL).
- * Thread safety: as pqp_model_tris.
- */
-int pqp_model_tris_float(const struct pqp_model *m,
-                         const struct pqp_tri_float **tris,
-                         int *num_tris);
-
-/**
- * As pqp_model_bvs, with float values (pqp_bv_float): for code compiled with PQP_REAL float. The
- * values are pqp_model_bvs's rounded to float. Kept apart from the double array.
- *
- * @param m        the model.
- * @param bvs      receives the array (owned by m; NULL on any error), valid as pqp_model_bvs's.
- * @param num_bvs  receives the number of volumes (0 on any error).
- * @return PQP_OK, or as pqp_model_bvs (PQP_ERR_NULL_POINTER, PQP_ERR_UNPROCESSED_MODEL,
- *         PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_INTERNAL).
- * Thread safety: as pqp_model_bvs.
- */
-int pqp_model_bvs_float(const struct pqp_model *m, const struct pqp_bv_float **bvs, int *num_bvs);
-
-/**
- * PQP 1.3's BV::FitToTris: fits a volume's rectangle swept sphere and box, on the axes given, to
- * every vertex of some triangles.
- *
- * bv->R becomes O; Tr, l and r become the smallest rectangle swept sphere the library's fit finds
- * on those axes (the rectangle on the first two) and To, d the tightest box on them, both
- * containing every vertex of the triangles and given in the triangles' coordinates (as PQP's:
- * pqp_model_bvs then makes them relative to the parent). bv->first_child is left as it was.
- *
- * @param bv        the volume to fill.
- * @param O         the axes, 9 doubles row by row: its columns are the axes, which must be
- *                  orthonormal (not checked: otherwise the volumes need not contain the vertices).
- *                  PQP used the principal axes of the vertices, the first of largest spread.
- * @param tris      the triangles, num_tris of them (their ids are not read).
- * @param num_tris  how many, >= 1.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if bv, O or tris is NULL; PQP_ERR_INVALID_ARGUMENT if
- *         num_tris < 1; PQP_ERR_NONFINITE_POSE if an entry of O is NaN, infinite or larger than
- *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a vertex coordinate is;
- *         PQP_ERR_OUT_OF_MEMORY if working storage could not be allocated; PQP_ERR_INTERNAL on an
- *         internal fault. On any error *bv is left unchanged.
- * Thread safety: may be called from any thread at any time; bv must not be used by another
- *                thread during the call.
- */
-int pqp_bv_fit(struct pqp_bv *bv, const double *O, const struct pqp_tri *tris, int num_tris);
-
-/**
- * PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
- * first's frame by (R, T).
- *
- * Each box is taken in its volume's own frame, about that frame's origin: box 1 is
- * `{ x : |x_i| <= b1->d[i] }`, box 2 is `{ y : |y_i| <= b2->d[i] }`, and a point y of box 2's
- * frame is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold
- * the volumes' frames and centres into R and T). The test is conservative: it never answers 0
- * for boxes that share a point (touching counts as overlapping); for boxes apart by less than a
- * rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
- *
- * @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
- * @param R        the rotation of box 2's frame in box 1's, 9 doubles row by row (a rotation; not
- *                 checked).
- * @param T        the translation, 3 doubles.
- * @param b1, b2   the volumes (only d is read).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
- *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
- *         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
- *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * @param code  a value returned by a pqp_ function (PQP_OK or a PQP_ERR_ code).
+ * @return a static NUL-terminated English text, never NULL; "unknown error code" for a value that
+ *         is not a PQP code. The caller must not free it.
  * Thread safety: may be called from any thread at any time.
  */
-int pqp_bv_overlap(int *overlap,
-                   const double *R,
-                   const double *T,
-                   const struct pqp_bv *b1,
-                   const struct pqp_bv *b2);
+const char *pqp_error_string(int code);
 
 /**
- * PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
- * second placed in the first's frame by (R, T).
+ * The library's version.
  *
- * Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
- * rectangle 1 is `[0, b1->l[0]] x [0, b1->l[1]]` in the xy-plane of frame 1, rectangle 2 likewise
- * in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
- * the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
- * the distance between the swept sphere volumes when they are apart, negative when they overlap
- * deeper than touching (as PQP's). The volumes' R, Tr, To and d are not read (PQP's callers fold
- * the volumes' frames and corners into R and T).
- *
- * @param distance  receives the distance (unchanged on any error).
- * @param R         the rotation of frame 2 in frame 1, 9 doubles row by row (a rotation; not
- *                  checked).
- * @param T         the translation, 3 doubles.
- * @param b1, b2    the volumes (only l and r are read).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
- *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
- *         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
- *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * @return a static NUL-terminated text "MAJOR.MINOR.PATCH" (for this release "1.0.0"), never
+ *         NULL. The caller must not free it.
  * Thread safety: may be called from any thread at any time.
  */
-int pqp_bv_distance(double *distance,
-                    const double *R,
-                    const double *T,
-                    const struct pqp_bv *b1,
-                    const struct pqp_bv *b2);
+const char *pqp_version(void);
 
 /**
  * Creates an empty collision result.
@@ -1568,6 +1407,227 @@ int pqp_signed_distance(double *out,
                         const double *point);
 
 /**
+ * Casts a ray at a posed model: the nearest point where origin + t * direction, 0 <= t <= max_t,
+ * meets one of its triangles.
+ *
+ * Watertight: a ray through an edge or a vertex shared by triangles of a closed mesh hits one of
+ * them, never slips between. Triangles are hit from either side. A ray lying in a triangle's plane
+ * does not hit that triangle (it hits its neighbours' edges); a triangle without area is never
+ * hit. A ray starting on a triangle hits it at t = 0. Among hits at the same t, the triangle added
+ * first is reported. See pqp_ray_hit for the accuracy.
+ *
+ * @param hit        where the answer is written (only on PQP_OK).
+ * @param R, T       the model's pose (as for pqp_collide).
+ * @param m          the model (built).
+ * @param origin     3 doubles, world coordinates, each finite and at most 1e150 in magnitude.
+ * @param direction  3 doubles, world coordinates, finite, not all zero; need not be a unit vector
+ *                   (t is in its units).
+ * @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
+ * @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
+ *         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
+ *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
+ *         (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
+ *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
+ *         1e150 in magnitude, or a direction coordinate is NaN or infinite;
+ *         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes and its copy of the
+ *         triangles in the tree's leaf order (made on its first ray cast, about 40 + 80 = 120
+ *         bytes per triangle, kept in the model and counted by pqp_model_memory_usage) could
+ *         not be allocated; PQP_ERR_INTERNAL on an internal fault. On any error nothing is
+ *         written.
+ * Thread safety: any number of calls may use the same model at once from different threads
+ *                (the first ones on a model may each make its tree of boxes and copy of the
+ *                triangles; one of each is kept).
+ */
+int pqp_ray_cast(struct pqp_ray_hit *hit,
+                 const double *R,
+                 const double *T,
+                 const struct pqp_model *m,
+                 const double *origin,
+                 const double *direction,
+                 double max_t);
+
+/**
+ * Casts n rays at a posed model, on several threads: `hits[i]` is what pqp_ray_cast gives for the
+ * ray origins + 3 * i, directions + 3 * i (the same answer, whatever the threads).
+ *
+ * Every ray is checked before any is cast: one bad ray fails the whole call.
+ *
+ * @param hits        n answers, written only on PQP_OK; must not overlap origins or directions.
+ * @param n           the number of rays; 0 returns PQP_OK (hits, origins and directions may
+ *                    then be NULL).
+ * @param R, T        the model's pose (as for pqp_collide).
+ * @param m           the model (built).
+ * @param origins     3 n doubles: the origins, as for pqp_ray_cast.
+ * @param directions  3 n doubles: the directions, as for pqp_ray_cast.
+ * @param max_t       the farthest t of interest for every ray, as for pqp_ray_cast.
+ * @param threads     the threads to cast on, the calling one included; 0 for as many as the
+ *                    machine has (counted once per process); any value is valid and is capped
+ *                    to the available cores and to n.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if R, T or m is NULL, or hits, origins or directions is
+ *         NULL and n > 0; PQP_ERR_INVALID_ARGUMENT if n is too large for the address space (n *
+ *         sizeof(pqp_ray_hit) > PTRDIFF_MAX), or as pqp_ray_cast for max_t or any ray; the other
+ *         codes as pqp_ray_cast, for any ray; PQP_ERR_OUT_OF_MEMORY if the answers' working
+ *         storage could not be allocated; PQP_ERR_INTERNAL on an internal fault (every hit
+ *         is then reset to "no hit" if the casting had begun). On any other error nothing is
+ *         written.
+ * Thread safety: as pqp_ray_cast.
+ */
+int pqp_ray_cast_batch(struct pqp_ray_hit *hits,
+                       size_t n,
+                       const double *R,
+                       const double *T,
+                       const struct pqp_model *m,
+                       const double *origins,
+                       const double *directions,
+                       double max_t,
+                       unsigned int threads);
+
+/**
+ * Replaces a model's contents (triangles or a primitive, built or not) with a solid sphere of
+ * `radius` centred on the model's origin, built: it can be queried at once.
+ *
+ * A primitive model works in pqp_collide, pqp_distance (and pqp_distance_search),
+ * pqp_tolerance (and pqp_tolerance_search), pqp_within_distance and the batch calls, against
+ * triangle models and against other primitives, with exact answers (as exact as the triangle
+ * distance: a triangle's distance from the primitive's core, less its radius). It is a solid: a
+ * triangle inside it collides with it and is at distance 0. In pair lists and results the
+ * primitive is one element with id 0 and triangle index 0; the triangle cache and search front
+ * of a distance result are not used with it. Its volume choices are kept for a later build.
+ *
+ * It holds no triangles: pqp_model_num_tris gives 0, pqp_model_tris 0 triangles, and the calls
+ * that need triangles or a hierarchy (pqp_closest_point, pqp_signed_distance, pqp_ray_cast and
+ * its batch, pqp_self_collide, pqp_time_of_contact, pqp_model_refit, pqp_model_serialize,
+ * pqp_model_bvs) return PQP_ERR_NOT_A_TRIANGLE_MESH. pqp_model_add_tri and pqp_model_end return
+ * PQP_ERR_BUILD_OUT_OF_SEQUENCE as on any built model; pqp_model_begin clears it into an empty
+ * model being built (returning PQP_ERR_BUILD_OUT_OF_SEQUENCE, as on any built model).
+ *
+ * @param m       the model.
+ * @param radius  the sphere's radius, >= 0 (0 is a point), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_sphere(struct pqp_model *m, double radius);
+
+/**
+ * Replaces a model's contents with a solid capsule, built: the points within `radius` of the
+ * segment of `length` on the model's z axis, centred on its origin (from (0, 0, -length/2) to
+ * (0, 0, length/2); FCL's Capsule(radius, lz) is the same shape). Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m       the model.
+ * @param radius  the radius, >= 0, at most 1e150.
+ * @param length  the segment's length, >= 0 (0 gives a sphere), at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius or
+ *         length is negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal
+ *         fault. On any error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_capsule(struct pqp_model *m, double radius, double length);
+
+/**
+ * Replaces a model's contents with a solid box, built: side lengths x, y and z along the model's
+ * axes, centred on its origin (FCL's Box(x, y, z) is the same shape). A zero side makes it flat
+ * (a rectangle, a segment or a point), still a solid for every query. Everything else as
+ * pqp_model_set_sphere.
+ *
+ * @param m        the model.
+ * @param x, y, z  the side lengths, each >= 0 and at most 1e150.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if a side is
+ *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
+ *         error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ */
+int pqp_model_set_box(struct pqp_model *m, double x, double y, double z);
+
+/**
+ * Moves the triangles of a built model and refits its bounding-volume hierarchy, without
+ * rebuilding it: for meshes that deform (cloth, soft bodies, animated characters) and keep their
+ * triangles and ids.
+ *
+ * Every triangle keeps its id and its place in the hierarchy; each volume keeps the frame it was
+ * built with and gets new extents around its children, bottom-up, in O(n) (4 to 8 times faster
+ * than pqp_model_end; see BENCHMARKS.md, Refit). Every query stays exact after a refit. The
+ * volumes are looser than a rebuild's, and queries do more work: 1.2 to 2.5 times a rebuilt
+ * model's when the mesh stretches (an inflating sphere), up to 8 times for distance queries when
+ * its patches turn (a bending sheet; collision stayed within 1.4 times). When to rebuild instead
+ * (pqp_model_begin, pqp_model_add_tri, pqp_model_end): when the queries after each deformation
+ * are many (a rebuild of an 80,000-triangle bending sheet paid back after about 600 distance
+ * queries), or when the queries' bound-test counts (pqp_distance_result_num_bv_tests) reach
+ * about twice what they were after the last build.
+ *
+ * Distance and tolerance results that cached m's old shape (closest pairs, search fronts) ignore
+ * the cache on their next query. Arrays from pqp_model_tris and pqp_model_bvs (and their float
+ * forms) are invalid after a successful refit: ask again.
+ *
+ * @param m          the model (built).
+ * @param triangles  9 * num_tris doubles: for each triangle, in the order the triangles were added,
+ *                   its new p1, p2 and p3 (x, y, z each).
+ * @param num_tris   the number of triangles; must be the model's (pqp_model_num_tris).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m or triangles is NULL; PQP_ERR_UNPROCESSED_MODEL if m is
+ *         not built; PQP_ERR_INVALID_ARGUMENT if num_tris is not the model's count;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_MODEL_OUT_OF_MEMORY if the new arrays could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
+ * Thread safety: as the build calls, must not run concurrently with any other call using m
+ *                (queries included).
+ */
+int pqp_model_refit(struct pqp_model *m, const double *triangles, size_t num_tris);
+
+/**
+ * The time of first contact of two moving models: the first time in [0, 1] at which they come
+ * within tolerance of each other (continuous collision detection by conservative advancement).
+ *
+ * Each model moves from pose a (t = 0) to pose b (t = 1): its translation linearly, its rotation
+ * at constant angular velocity about a fixed axis, R(t) = Ra exp(t log(Ra^T Rb)), the shorter
+ * way; a relative turn of exactly pi turns (right-handed, by +pi) about the axis, in Ra's frame,
+ * whose largest-magnitude component is positive. Rotations orthonormal to within 1e-6 (every
+ * entry of R^T R - I at most 1e-6, determinant positive) are accepted and projected to the
+ * nearest rotation first.
+ *
+ * Guarantees (up to the rounding of poses and distances): with contact, the distance at toc is
+ * at most tolerance and above 0.999 tolerance at every earlier time, so the models never overlap
+ * before toc; toc is 0 when they are within tolerance at the start. contact is 0 only when the
+ * distance stays above tolerance over all of [0, 1] (to within a relative 1e-9 where the motion
+ * only grazes the tolerance). No thin obstacle is missed, however fast the motion: the search
+ * steps by the exact distance over a bound on the speed of every point, and makes at most
+ * 1000 B / tolerance + 1 advancement steps, B being that bound (a distance query each); motions
+ * that approach converge in a few.
+ *
+ * @param out        the answer (written only on success).
+ * @param R1a, T1a   the pose of model 1 at t = 0.
+ * @param R1b, T1b   the pose of model 1 at t = 1.
+ * @param m1         model 1 (built).
+ * @param R2a, T2a   the pose of model 2 at t = 0.
+ * @param R2b, T2b   the pose of model 2 at t = 1.
+ * @param m2         model 2 (built; may be the same model as m1).
+ * @param tolerance  the distance that counts as contact, > 0 (INFINITY: contact at 0).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
+ *         tolerance is not above 0 (or NaN), or a rotation is not one to within 1e-6 (a
+ *         reflection included); PQP_ERR_UNPROCESSED_MODEL if a model is not built;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if a model holds a primitive (pqp_model_set_sphere, ...);
+ *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_INTERNAL on an internal fault. On any error out is left unchanged.
+ * Thread safety: any number of queries may use the same models at once from different threads.
+ */
+int pqp_time_of_contact(struct pqp_contact_time *out,
+                        const double *R1a,
+                        const double *T1a,
+                        const double *R1b,
+                        const double *T1b,
+                        const struct pqp_model *m1,
+                        const double *R2a,
+                        const double *T2a,
+                        const double *R2b,
+                        const double *T2b,
+                        const struct pqp_model *m2,
+                        double tolerance);
+
+/**
  * Answers the collision query of pqp_collide at each of n pose pairs of the same two models, on
  * several threads: `colliding[i]` is 1 if m1 at (R1 + 9 i, T1 + 3 i) and m2 at (R2 + 9 i, T2 + 3 i)
  * collide, else 0.
@@ -1688,131 +1748,54 @@ int pqp_tolerance_batch(int *closer,
                         unsigned int threads);
 
 /**
- * Casts a ray at a posed model: the nearest point where origin + t * direction, 0 <= t <= max_t,
- * meets one of its triangles.
+ * Saves a built model into a buffer, to be loaded later, here or on another machine, by
+ * pqp_model_deserialize (much faster than building it again). The bytes hold everything the model
+ * is: its triangles and ids in the order added, its hierarchy and its volume choices. They are
+ * the same on every machine (little-endian, whatever the host), start with a magic and a version
+ * and end with a checksum over every byte; docs/saved-model-format.md describes them. About 184
+ * bytes per triangle.
  *
- * Watertight: a ray through an edge or a vertex shared by triangles of a closed mesh hits one of
- * them, never slips between. Triangles are hit from either side. A ray lying in a triangle's plane
- * does not hit that triangle (it hits its neighbours' edges); a triangle without area is never
- * hit. A ray starting on a triangle hits it at t = 0. Among hits at the same t, the triangle added
- * first is reported. See pqp_ray_hit for the accuracy.
+ * Call it first with buffer NULL to learn the size: it returns PQP_ERR_BUFFER_TOO_SMALL with the
+ * size in *size. Then allocate that much and call again.
  *
- * @param hit        where the answer is written (only on PQP_OK).
- * @param R, T       the model's pose (as for pqp_collide).
- * @param m          the model (built).
- * @param origin     3 doubles, world coordinates, each finite and at most 1e150 in magnitude.
- * @param direction  3 doubles, world coordinates, finite, not all zero; need not be a unit vector
- *                   (t is in its units).
- * @param max_t      the farthest t of interest, >= 0 (-0 is 0), may be INFINITY.
- * @return PQP_OK (hit->triangle is -1 and hit->t INFINITY if the ray hits nothing);
- *         PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_UNPROCESSED_MODEL if m is not
- *         built; PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive
- *         (pqp_model_set_sphere, ...);
- *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
- *         magnitude; PQP_ERR_INVALID_ARGUMENT if max_t is negative or NaN or direction is zero;
- *         PQP_ERR_NONFINITE_COORDINATE if an origin coordinate is NaN, infinite or larger than
- *         1e150 in magnitude, or a direction coordinate is NaN or infinite;
- *         PQP_ERR_OUT_OF_MEMORY if the model's tree of axis-aligned boxes and its copy of the
- *         triangles in the tree's leaf order (made on its first ray cast, about 40 + 80 = 120
- *         bytes per triangle, kept in the model and counted by pqp_model_memory_usage) could
- *         not be allocated; PQP_ERR_INTERNAL on an internal fault. On any error nothing is
- *         written.
- * Thread safety: any number of calls may use the same model at once from different threads
- *                (the first ones on a model may each make its tree of boxes and copy of the
- *                triangles; one of each is kept).
+ * @param m         the model (built).
+ * @param buffer    where to write, capacity bytes (any alignment); NULL to ask for the size.
+ * @param capacity  bytes available at buffer.
+ * @param size      receives the number of bytes written, or needed.
+ * @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
+ *         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
+ *         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
+ *         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (a built model may be
+ *                saved while other threads query it), not with build calls on m.
  */
-int pqp_ray_cast(struct pqp_ray_hit *hit,
-                 const double *R,
-                 const double *T,
-                 const struct pqp_model *m,
-                 const double *origin,
-                 const double *direction,
-                 double max_t);
+int pqp_model_serialize(const struct pqp_model *m, void *buffer, size_t capacity, size_t *size);
 
 /**
- * Casts n rays at a posed model, on several threads: `hits[i]` is what pqp_ray_cast gives for the
- * ray origins + 3 * i, directions + 3 * i (the same answer, whatever the threads).
+ * Loads a model saved by pqp_model_serialize into m, replacing whatever m held (empty, being
+ * built, or built): m is then built, equal to the saved model (every query answers as the saved
+ * model did, with the same counts of bound and triangle tests) with its volume choices. Nothing is
+ * rebuilt: the bytes are checked and copied, in time linear in size.
  *
- * Every ray is checked before any is cast: one bad ray fails the whole call.
+ * Every byte is checked before m is touched: the magic, the version, the size, the checksum, and
+ * then the contents (every index in range, the hierarchy a tree over the triangles of the
+ * build's depth, coordinates finite and within 1e150, counts consistent), so that no buffer,
+ * truncated, corrupted or crafted, can crash, hang or give a model a query could misuse. Not
+ * checked is that each bounding volume encloses its triangles (that costs a build): bytes crafted
+ * with wrong volumes and a matching checksum give a model whose queries are safe but may answer
+ * wrongly. Load only what pqp_model_serialize wrote.
  *
- * @param hits        n answers, written only on PQP_OK; must not overlap origins or directions.
- * @param n           the number of rays; 0 returns PQP_OK (hits, origins and directions may
- *                    then be NULL).
- * @param R, T        the model's pose (as for pqp_collide).
- * @param m           the model (built).
- * @param origins     3 n doubles: the origins, as for pqp_ray_cast.
- * @param directions  3 n doubles: the directions, as for pqp_ray_cast.
- * @param max_t       the farthest t of interest for every ray, as for pqp_ray_cast.
- * @param threads     the threads to cast on, the calling one included; 0 for as many as the
- *                    machine has (counted once per process); any value is valid and is capped
- *                    to the available cores and to n.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if R, T or m is NULL, or hits, origins or directions is
- *         NULL and n > 0; PQP_ERR_INVALID_ARGUMENT if n is too large for the address space (n *
- *         sizeof(pqp_ray_hit) > PTRDIFF_MAX), or as pqp_ray_cast for max_t or any ray; the other
- *         codes as pqp_ray_cast, for any ray; PQP_ERR_OUT_OF_MEMORY if the answers' working
- *         storage could not be allocated; PQP_ERR_INTERNAL on an internal fault (every hit
- *         is then reset to "no hit" if the casting had begun). On any other error nothing is
- *         written.
- * Thread safety: as pqp_ray_cast.
+ * @param m       the model to replace.
+ * @param buffer  the saved model, size bytes (any alignment).
+ * @param size    its length in bytes: exactly what pqp_model_serialize gave.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m or buffer is NULL; PQP_ERR_INVALID_DATA if the
+ *         bytes are not a saved model of this format and version (truncated, longer, corrupted,
+ *         or invalid contents); PQP_ERR_MODEL_OUT_OF_MEMORY if the model could not be allocated;
+ *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
+ * Thread safety: must not run concurrently with any other call using m.
  */
-int pqp_ray_cast_batch(struct pqp_ray_hit *hits,
-                       size_t n,
-                       const double *R,
-                       const double *T,
-                       const struct pqp_model *m,
-                       const double *origins,
-                       const double *directions,
-                       double max_t,
-                       unsigned int threads);
-
-/**
- * The time of first contact of two moving models: the first time in [0, 1] at which they come
- * within tolerance of each other (continuous collision detection by conservative advancement).
- *
- * Each model moves from pose a (t = 0) to pose b (t = 1): its translation linearly, its rotation
- * at constant angular velocity about a fixed axis, R(t) = Ra exp(t log(Ra^T Rb)), the shorter
- * way; a relative turn of exactly pi turns (right-handed, by +pi) about the axis, in Ra's frame,
- * whose largest-magnitude component is positive. Rotations orthonormal to within 1e-6 (every
- * entry of R^T R - I at most 1e-6, determinant positive) are accepted and projected to the
- * nearest rotation first.
- *
- * Guarantees (up to the rounding of poses and distances): with contact, the distance at toc is
- * at most tolerance and above 0.999 tolerance at every earlier time, so the models never overlap
- * before toc; toc is 0 when they are within tolerance at the start. contact is 0 only when the
- * distance stays above tolerance over all of [0, 1] (to within a relative 1e-9 where the motion
- * only grazes the tolerance). No thin obstacle is missed, however fast the motion: the search
- * steps by the exact distance over a bound on the speed of every point, and makes at most
- * 1000 B / tolerance + 1 advancement steps, B being that bound (a distance query each); motions
- * that approach converge in a few.
- *
- * @param out        the answer (written only on success).
- * @param R1a, T1a   the pose of model 1 at t = 0.
- * @param R1b, T1b   the pose of model 1 at t = 1.
- * @param m1         model 1 (built).
- * @param R2a, T2a   the pose of model 2 at t = 0.
- * @param R2b, T2b   the pose of model 2 at t = 1.
- * @param m2         model 2 (built; may be the same model as m1).
- * @param tolerance  the distance that counts as contact, > 0 (INFINITY: contact at 0).
- * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_INVALID_ARGUMENT if
- *         tolerance is not above 0 (or NaN), or a rotation is not one to within 1e-6 (a
- *         reflection included); PQP_ERR_UNPROCESSED_MODEL if a model is not built;
- *         PQP_ERR_NOT_A_TRIANGLE_MESH if a model holds a primitive (pqp_model_set_sphere, ...);
- *         PQP_ERR_NONFINITE_POSE if a pose entry is NaN, infinite or larger than 1e150 in
- *         magnitude; PQP_ERR_INTERNAL on an internal fault. On any error out is left unchanged.
- * Thread safety: any number of queries may use the same models at once from different threads.
- */
-int pqp_time_of_contact(struct pqp_contact_time *out,
-                        const double *R1a,
-                        const double *T1a,
-                        const double *R1b,
-                        const double *T1b,
-                        const struct pqp_model *m1,
-                        const double *R2a,
-                        const double *T2a,
-                        const double *R2b,
-                        const double *T2b,
-                        const struct pqp_model *m2,
-                        double tolerance);
+int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
 
 /**
  * Creates a convex model: the convex hull of a point set.
@@ -2324,132 +2307,167 @@ int pqp_segment_distance(double *distance,
                          const double *db);
 
 /**
- * Describes a status code.
+ * PQP 1.3's PQP_Model::tris and num_tris: every triangle of a model, in the order added, with its
+ * id, as double.
  *
- * @param code  a value returned by a pqp_ function (PQP_OK or a PQP_ERR_ code).
- * @return a static NUL-terminated English text, never NULL; "unknown error code" for a value that
- *         is not a PQP code. The caller must not free it.
- * Thread safety: may be called from any thread at any time.
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array. While a model is being built it holds the triangles added so
+ * far; a triangle refused by pqp_model_add_tri is not in it.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error). It stays valid, and its contents unchanged, until the next
+ *                  pqp_model_begin, pqp_model_add_tri, pqp_model_end or
+ *                  pqp_model_refit on m, or pqp_model_destroy(m).
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, tris or num_tris is NULL;
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
  */
-const char *pqp_error_string(int code);
+int pqp_model_tris(const struct pqp_model *m, const struct pqp_tri **tris, int *num_tris);
 
 /**
- * The library's version.
+ * PQP 1.3's PQP_Model::b and num_bvs: the bounding-volume hierarchy of a built model, in PQP's
+ * layout and frames (see pqp_bv).
  *
- * @return a static NUL-terminated text "MAJOR.MINOR.PATCH" (for this release "1.0.0"), never
- *         NULL. The caller must not free it.
- * Thread safety: may be called from any thread at any time.
- */
-const char *pqp_version(void);
-
-/**
- * Saves a built model into a buffer, to be loaded later, here or on another machine, by
- * pqp_model_deserialize (much faster than building it again). The bytes hold everything the model
- * is: its triangles and ids in the order added, its hierarchy and its volume choices. They are
- * the same on every machine (little-endian, whatever the host), start with a magic and a version
- * and end with a checksum over every byte; docs/saved-model-format.md describes them. About 184
- * bytes per triangle.
+ * There are exactly 2 n - 1 volumes for n triangles. `b[0]` is the root. The children of a volume
+ * are at first_child and first_child + 1, both after it; they were given out depth first, as PQP
+ * did (when a volume is expanded its two children take the next two free slots, then the first
+ * child's subtree is laid out before the second's). A leaf's first_child is -(t + 1), t being its
+ * triangle's index in pqp_model_tris (the order added); a one-triangle model has one volume, a
+ * leaf with first_child -1. Each volume contains its triangles. Inner volumes are those the
+ * queries use; a leaf's are the rectangle around its triangle and the box on that rectangle's
+ * axes.
  *
- * Call it first with buffer NULL to learn the size: it returns PQP_ERR_BUFFER_TOO_SMALL with the
- * size in *size. Then allocate that much and call again.
- *
- * @param m         the model (built).
- * @param buffer    where to write, capacity bytes (any alignment); NULL to ask for the size.
- * @param capacity  bytes available at buffer.
- * @param size      receives the number of bytes written, or needed.
- * @return PQP_OK (*size bytes written at buffer); PQP_ERR_NULL_POINTER if m or size is NULL;
- *         PQP_ERR_UNPROCESSED_MODEL if m is not built (nothing written); PQP_ERR_BUFFER_TOO_SMALL
- *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
- *         if buffer is NULL or capacity is less than the model needs: *size is set to the bytes
- *         needed and nothing is written at buffer; PQP_ERR_INTERNAL on an internal fault.
- * Thread safety: may run concurrently with queries and other getters on m (a built model may be
- *                saved while other threads query it), not with build calls on m.
- */
-int pqp_model_serialize(const struct pqp_model *m, void *buffer, size_t capacity, size_t *size);
-
-/**
- * Loads a model saved by pqp_model_serialize into m, replacing whatever m held (empty, being
- * built, or built): m is then built, equal to the saved model (every query answers as the saved
- * model did, with the same counts of bound and triangle tests) with its volume choices. Nothing is
- * rebuilt: the bytes are checked and copied, in time linear in size.
- *
- * Every byte is checked before m is touched: the magic, the version, the size, the checksum, and
- * then the contents (every index in range, the hierarchy a tree over the triangles of the
- * build's depth, coordinates finite and within 1e150, counts consistent), so that no buffer,
- * truncated, corrupted or crafted, can crash, hang or give a model a query could misuse. Not
- * checked is that each bounding volume encloses its triangles (that costs a build): bytes crafted
- * with wrong volumes and a matching checksum give a model whose queries are safe but may answer
- * wrongly. Load only what pqp_model_serialize wrote.
- *
- * @param m       the model to replace.
- * @param buffer  the saved model, size bytes (any alignment).
- * @param size    its length in bytes: exactly what pqp_model_serialize gave.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m or buffer is NULL; PQP_ERR_INVALID_DATA if the
- *         bytes are not a saved model of this format and version (truncated, longer, corrupted,
- *         or invalid contents); PQP_ERR_MODEL_OUT_OF_MEMORY if the model could not be allocated;
- *         PQP_ERR_INTERNAL on an internal fault. On any error m is unchanged.
- * Thread safety: must not run concurrently with any other call using m.
- */
-int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
-
-/**
- * Replaces a model's contents (triangles or a primitive, built or not) with a solid sphere of
- * `radius` centred on the model's origin, built: it can be queried at once.
- *
- * A primitive model works in pqp_collide, pqp_distance (and pqp_distance_search),
- * pqp_tolerance (and pqp_tolerance_search), pqp_within_distance and the batch calls, against
- * triangle models and against other primitives, with exact answers (as exact as the triangle
- * distance: a triangle's distance from the primitive's core, less its radius). It is a solid: a
- * triangle inside it collides with it and is at distance 0. In pair lists and results the
- * primitive is one element with id 0 and triangle index 0; the triangle cache and search front
- * of a distance result are not used with it. Its volume choices are kept for a later build.
- *
- * It holds no triangles: pqp_model_num_tris gives 0, pqp_model_tris 0 triangles, and the calls
- * that need triangles or a hierarchy (pqp_closest_point, pqp_signed_distance, pqp_ray_cast and
- * its batch, pqp_self_collide, pqp_time_of_contact, pqp_model_refit, pqp_model_serialize,
- * pqp_model_bvs) return PQP_ERR_NOT_A_TRIANGLE_MESH. pqp_model_add_tri and pqp_model_end return
- * PQP_ERR_BUILD_OUT_OF_SEQUENCE as on any built model; pqp_model_begin clears it into an empty
- * model being built (returning PQP_ERR_BUILD_OUT_OF_SEQUENCE, as on any built model).
- *
- * @param m       the model.
- * @param radius  the sphere's radius, >= 0 (0 is a point), at most 1e150.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius is
- *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
- *         error m is unchanged.
- * Thread safety: as the build calls, must not run concurrently with any other call using m.
- */
-int pqp_model_set_sphere(struct pqp_model *m, double radius);
-
-/**
- * Replaces a model's contents with a solid capsule, built: the points within `radius` of the
- * segment of `length` on the model's z axis, centred on its origin (from (0, 0, -length/2) to
- * (0, 0, length/2); FCL's Capsule(radius, lz) is the same shape). Everything else as
- * pqp_model_set_sphere.
- *
- * @param m       the model.
- * @param radius  the radius, >= 0, at most 1e150.
- * @param length  the segment's length, >= 0 (0 gives a sphere), at most 1e150.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if radius or
- *         length is negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal
- *         fault. On any error m is unchanged.
- * Thread safety: as the build calls, must not run concurrently with any other call using m.
- */
-int pqp_model_set_capsule(struct pqp_model *m, double radius, double length);
-
-/**
- * Replaces a model's contents with a solid box, built: side lengths x, y and z along the model's
- * axes, centred on its origin (FCL's Box(x, y, z) is the same shape). A zero side makes it flat
- * (a rectangle, a segment or a point), still a solid for every query. Everything else as
- * pqp_model_set_sphere.
+ * Made on the first call and kept in the model (pqp_model_memory_usage counts it from then on);
+ * later calls return the same array.
  *
  * @param m        the model.
- * @param x, y, z  the side lengths, each >= 0 and at most 1e150.
- * @return PQP_OK; PQP_ERR_NULL_POINTER if m is NULL; PQP_ERR_INVALID_ARGUMENT if a side is
- *         negative, NaN, infinite or above 1e150; PQP_ERR_INTERNAL on an internal fault. On any
- *         error m is unchanged.
- * Thread safety: as the build calls, must not run concurrently with any other call using m.
+ * @param bvs      receives the array (owned by m; NULL on any error). It stays valid, and its
+ *                 contents unchanged, until the next pqp_model_begin, pqp_model_add_tri,
+ *                 pqp_model_end or pqp_model_refit on m, or pqp_model_destroy(m).
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if m, bvs or num_bvs is NULL; PQP_ERR_UNPROCESSED_MODEL if
+ *         m is not built; PQP_ERR_MODEL_OUT_OF_MEMORY if the array could not be allocated;
+ *         PQP_ERR_NOT_A_TRIANGLE_MESH if m holds a primitive (pqp_model_set_sphere, ...);
+ *         PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may run concurrently with queries and other getters on m (threads asking at once
+ *                all get the same array), not with build calls on m.
  */
-int pqp_model_set_box(struct pqp_model *m, double x, double y, double z);
+int pqp_model_bvs(const struct pqp_model *m, const struct pqp_bv **bvs, int *num_bvs);
+
+/**
+ * As pqp_model_tris, with float coordinates (pqp_tri_float): for code compiled with PQP_REAL
+ * float. The values are pqp_model_tris's rounded to float. Kept apart from the double array.
+ *
+ * @param m         the model, in any state.
+ * @param tris      receives the array (owned by m; NULL when the model holds no triangle, and on
+ *                  any error), valid as pqp_model_tris's.
+ * @param num_tris  receives the number of triangles (0 on any error).
+ * @return PQP_OK, or as pqp_model_tris (PQP_ERR_NULL_POINTER, PQP_ERR_MODEL_OUT_OF_MEMORY,
+ *         PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_tris.
+ */
+int pqp_model_tris_float(const struct pqp_model *m,
+                         const struct pqp_tri_float **tris,
+                         int *num_tris);
+
+/**
+ * As pqp_model_bvs, with float values (pqp_bv_float): for code compiled with PQP_REAL float. The
+ * values are pqp_model_bvs's rounded to float. Kept apart from the double array.
+ *
+ * @param m        the model.
+ * @param bvs      receives the array (owned by m; NULL on any error), valid as pqp_model_bvs's.
+ * @param num_bvs  receives the number of volumes (0 on any error).
+ * @return PQP_OK, or as pqp_model_bvs (PQP_ERR_NULL_POINTER, PQP_ERR_UNPROCESSED_MODEL,
+ *         PQP_ERR_MODEL_OUT_OF_MEMORY, PQP_ERR_INTERNAL).
+ * Thread safety: as pqp_model_bvs.
+ */
+int pqp_model_bvs_float(const struct pqp_model *m, const struct pqp_bv_float **bvs, int *num_bvs);
+
+/**
+ * PQP 1.3's BV::FitToTris: fits a volume's rectangle swept sphere and box, on the axes given, to
+ * every vertex of some triangles.
+ *
+ * bv->R becomes O; Tr, l and r become the smallest rectangle swept sphere the library's fit finds
+ * on those axes (the rectangle on the first two) and To, d the tightest box on them, both
+ * containing every vertex of the triangles and given in the triangles' coordinates (as PQP's:
+ * pqp_model_bvs then makes them relative to the parent). bv->first_child is left as it was.
+ *
+ * @param bv        the volume to fill.
+ * @param O         the axes, 9 doubles row by row: its columns are the axes, which must be
+ *                  orthonormal (not checked: otherwise the volumes need not contain the vertices).
+ *                  PQP used the principal axes of the vertices, the first of largest spread.
+ * @param tris      the triangles, num_tris of them (their ids are not read).
+ * @param num_tris  how many, >= 1.
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if bv, O or tris is NULL; PQP_ERR_INVALID_ARGUMENT if
+ *         num_tris < 1; PQP_ERR_NONFINITE_POSE if an entry of O is NaN, infinite or larger than
+ *         1e150 in magnitude; PQP_ERR_NONFINITE_COORDINATE if a vertex coordinate is;
+ *         PQP_ERR_OUT_OF_MEMORY if working storage could not be allocated; PQP_ERR_INTERNAL on an
+ *         internal fault. On any error *bv is left unchanged.
+ * Thread safety: may be called from any thread at any time; bv must not be used by another
+ *                thread during the call.
+ */
+int pqp_bv_fit(struct pqp_bv *bv, const double *O, const struct pqp_tri *tris, int num_tris);
+
+/**
+ * PQP 1.3's BV_Overlap: whether the boxes of two volumes overlap, the second placed in the
+ * first's frame by (R, T).
+ *
+ * Each box is taken in its volume's own frame, about that frame's origin: box 1 is
+ * `{ x : |x_i| <= b1->d[i] }`, box 2 is `{ y : |y_i| <= b2->d[i] }`, and a point y of box 2's
+ * frame is R y + T in box 1's. The volumes' R, Tr, To, l and r are not read (PQP's callers fold
+ * the volumes' frames and centres into R and T). The test is conservative: it never answers 0
+ * for boxes that share a point (touching counts as overlapping); for boxes apart by less than a
+ * rounding allowance (a few ulps of the magnitudes involved) it may answer 1.
+ *
+ * @param overlap  receives 1 if the boxes overlap, else 0 (unchanged on any error).
+ * @param R        the rotation of box 2's frame in box 1's, 9 doubles row by row (a rotation; not
+ *                 checked).
+ * @param T        the translation, 3 doubles.
+ * @param b1, b2   the volumes (only d is read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a half extent is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_overlap(int *overlap,
+                   const double *R,
+                   const double *T,
+                   const struct pqp_bv *b1,
+                   const struct pqp_bv *b2);
+
+/**
+ * PQP 1.3's BV_Distance: the distance between the rectangle swept spheres of two volumes, the
+ * second placed in the first's frame by (R, T).
+ *
+ * Each rectangle is taken in its volume's own frame, with its corner at that frame's origin:
+ * rectangle 1 is `[0, b1->l[0]] x [0, b1->l[1]]` in the xy-plane of frame 1, rectangle 2 likewise
+ * in frame 2, and a point y of frame 2 is R y + T in frame 1. The answer is the distance between
+ * the two rectangles (exact up to rounding, by the library's rectangle kernel) less both radii:
+ * the distance between the swept sphere volumes when they are apart, negative when they overlap
+ * deeper than touching (as PQP's). The volumes' R, Tr, To and d are not read (PQP's callers fold
+ * the volumes' frames and corners into R and T).
+ *
+ * @param distance  receives the distance (unchanged on any error).
+ * @param R         the rotation of frame 2 in frame 1, 9 doubles row by row (a rotation; not
+ *                  checked).
+ * @param T         the translation, 3 doubles.
+ * @param b1, b2    the volumes (only l and r are read).
+ * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_POSE if an entry
+ *         of R or T is NaN, infinite or larger than 1e150 in magnitude;
+ *         PQP_ERR_NONFINITE_COORDINATE if a side or radius is, PQP_ERR_INVALID_ARGUMENT if one is
+ *         negative; PQP_ERR_INTERNAL on an internal fault.
+ * Thread safety: may be called from any thread at any time.
+ */
+int pqp_bv_distance(double *distance,
+                    const double *R,
+                    const double *T,
+                    const struct pqp_bv *b1,
+                    const struct pqp_bv *b2);
 
 #ifdef __cplusplus
 }  // extern "C"

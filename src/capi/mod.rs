@@ -24,13 +24,13 @@
 // readers in the header preamble rather than in a `# Safety` section per function.
 #![allow(clippy::missing_safety_doc)]
 
-// In the order the header lists them (cbindgen follows the module order).
+// In the order the header lists its functions, by topic (cbindgen follows the module order; the
+// header's table of contents, in cbindgen.toml, names the same topics in the same order).
+// Lifecycle and build.
 mod model;
-// Refit: moving a built model's triangles.
-mod refit;
-// PQP 1.3's view of a model and its volumes' functions.
-mod legacy;
-// Collision.
+// Error texts and version.
+mod misc;
+// Pair queries: collision.
 mod collide;
 // Self-collision.
 mod self_collide;
@@ -42,22 +42,24 @@ mod tolerance;
 mod within_distance;
 // Point queries: closest point, signed distance.
 mod point;
-// Batches of collision, distance and tolerance queries on several threads.
-mod batch;
 // Ray casting.
 mod ray;
-// Time of first contact of moving models.
-mod contact_time;
-// Convex polyhedra.
-mod convex;
-// Single triangles and segments (TriDist.h).
-mod geometry;
-// Error texts and version.
-mod misc;
-// Saved models: serialize and deserialize.
-mod saved;
 // Swept-sphere primitives as models: sphere, capsule, box.
 mod primitive;
+// Motion: refit of moving triangles.
+mod refit;
+// Time of first contact of moving models.
+mod contact_time;
+// Batches of collision, distance and tolerance queries on several threads.
+mod batch;
+// Saved models: serialize and deserialize.
+mod saved;
+// Convex polyhedra.
+mod convex;
+// PQP 1.3's view: single triangles and segments (TriDist.h).
+mod geometry;
+// A model's triangles and volumes in PQP 1.3's layout.
+mod legacy;
 
 pub use batch::*;
 pub use collide::*;
