@@ -1831,11 +1831,11 @@ int pqp_time_of_contact(struct pqp_contact_time *out,
  * @param xyz  the points, 3 doubles each (x, y, z in the model's frame), n * 3 doubles in all.
  * @param n    the number of points, >= 0.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out or xyz is NULL (even when n is 0);
- *         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30; PQP_ERR_NONFINITE_COORDINATE if a
- *         coordinate is NaN, infinite or larger than 1e150 in magnitude;
- *         PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer than four
- *         distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY if the
- *         model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
+ *         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30 (checked before xyz is read);
+ *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer
+ *         than four distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY
+ *         if the model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may be called from any thread at any time.
  */
 int pqp_convex_model_from_points(struct pqp_convex_model **out, const double *xyz, int n);
@@ -1855,8 +1855,10 @@ int pqp_convex_model_from_points(struct pqp_convex_model **out, const double *xy
  * @param triangles      vertex indices, 3 per triangle, num_triangles * 3 ints in all.
  * @param num_triangles  the number of triangles, >= 0.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz or triangles is NULL;
- *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large, or an index is negative or
- *         >= num_vertices; PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30 or
+ *         num_triangles > 2 num_vertices: a closed mesh has 2 num_vertices - 4; both checked
+ *         before any array is read), or an index is negative or >= num_vertices;
+ *         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
  *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (open,
  *         inconsistently oriented, inside out, not convex, flat, an unused vertex, fewer than 4
  *         vertices or faces); PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
@@ -1883,8 +1885,11 @@ int pqp_convex_model_from_triangles(struct pqp_convex_model **out,
  * @param indices       the faces' vertex indices, concatenated, num_indices ints.
  * @param num_indices   the number of indices: must equal the sum of counts.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz, counts or indices is NULL;
- *         PQP_ERR_INVALID_ARGUMENT if a count is negative, a face count is below 3, the counts do
- *         not sum to num_indices, or an index is negative or >= num_vertices;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30,
+ *         num_faces > 2 num_vertices or num_indices > 6 num_vertices: a closed polyhedron has at
+ *         most 2 num_vertices - 4 faces and 6 num_vertices - 12 indices; checked before the
+ *         arrays they count are read), a face count is below 3, the counts do not sum to
+ *         num_indices, or an index is negative or >= num_vertices;
  *         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
  *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (as for
  *         pqp_convex_model_from_triangles, or a face not planar or not strictly convex);
