@@ -6,9 +6,9 @@
 
 mod common;
 
-use common::{Mesh, Random, RandomPqp, Rng, T, V, tri_tri};
+use common::{Mesh, RandomPqp, Rng, T, V, tri_tri};
 use pqp::math::Mat3;
-use pqp::{ContactTime, Model, Motion, Pose, Vec3, time_of_contact};
+use pqp::{ContactTime, Motion, Pose, Vec3, time_of_contact};
 use std::f64::consts::PI;
 
 /// An axis-aligned box from `lo` to `hi` (12 triangles).

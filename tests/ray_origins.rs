@@ -318,7 +318,7 @@ fn exact_points_of_random_grid_triangles_hit_at_zero() {
         let mut v = || [0; 3].map(|_: i32| (rng.below(129) as f64 - 64.0) / 8.0);
         let t = [v(), v(), v()];
         // A neighbour across the first edge, the triangle, and a copy of it added later.
-        let tris = vec![[t[1], t[0], v()], t, [t[1], t[2], t[0]]];
+        let tris = [[t[1], t[0], v()], t, [t[1], t[2], t[0]]];
         let mut rng2 = Rng(rng.below(1 << 30) as u64);
         let k = 1 + rng2.below(3);
         tally.add(check_mesh(&tris[..k], &Pose::identity(), &mut rng2, 1));

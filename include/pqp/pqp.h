@@ -1732,7 +1732,7 @@ int pqp_ray_cast(struct pqp_ray_hit *hit,
                  double max_t);
 
 /**
- * Casts n rays at a posed model, on several threads: hits[i] is what pqp_ray_cast gives for the
+ * Casts n rays at a posed model, on several threads: `hits[i]` is what pqp_ray_cast gives for the
  * ray origins + 3 * i, directions + 3 * i (the same answer, whatever the threads).
  *
  * Every ray is checked before any is cast: one bad ray fails the whole call.
@@ -2295,7 +2295,7 @@ int64_t pqp_convex_result_num_local_minima(const struct pqp_convex_result *r);
  * @param p         where the closest point on triangle s is written (3 doubles).
  * @param q         where the closest point on triangle t is written (3 doubles).
  * @param s         the first triangle: 9 doubles, its three vertices one after the other (x, y, z
- *                  of each), as PQP's double s[3][3] (pass &s[0][0]).
+ *                  of each), as PQP's `double s[3][3]` (pass `&s[0][0]`).
  * @param t         the second triangle, likewise.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_COORDINATE if a
  *         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an

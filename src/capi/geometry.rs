@@ -66,7 +66,7 @@ fn check_outputs(distance: *mut f64, p: *mut f64, q: *mut f64) -> Result<(), Err
 /// @param p         where the closest point on triangle s is written (3 doubles).
 /// @param q         where the closest point on triangle t is written (3 doubles).
 /// @param s         the first triangle: 9 doubles, its three vertices one after the other (x, y, z
-///                  of each), as PQP's double s[3][3] (pass &s[0][0]).
+///                  of each), as PQP's `double s[3][3]` (pass `&s[0][0]`).
 /// @param t         the second triangle, likewise.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if any pointer is NULL; PQP_ERR_NONFINITE_COORDINATE if a
 ///         coordinate is NaN, infinite or larger than 1e150 in magnitude; PQP_ERR_INTERNAL on an

@@ -120,7 +120,7 @@ pub unsafe extern "C" fn pqp_ray_cast(
     })
 }
 
-/// Casts n rays at a posed model, on several threads: hits[i] is what pqp_ray_cast gives for the
+/// Casts n rays at a posed model, on several threads: `hits[i]` is what pqp_ray_cast gives for the
 /// ray origins + 3 * i, directions + 3 * i (the same answer, whatever the threads).
 ///
 /// Every ray is checked before any is cast: one bad ray fails the whole call.

@@ -262,14 +262,14 @@ impl LocalRay {
             if (za > 0.0 && zb > 0.0 && zc > 0.0) || (za < 0.0 && zb < 0.0 && zc < 0.0) {
                 return None;
             }
-            return self.from_triangle(t);
+            return self.starts_on(t);
         }
         self.confirm(t, [a, b, c], e)
     }
 
     /// `Some(0.0)` if the origin lies on triangle `t` (exactly), else `None`.
     #[inline(never)]
-    fn from_triangle(&self, t: [&Vec3; 3]) -> Option<f64> {
+    fn starts_on(&self, t: [&Vec3; 3]) -> Option<f64> {
         (self.origin_in_box(t) && origin_on_triangle(t, &self.o)).then_some(0.0)
     }
 
@@ -294,7 +294,7 @@ impl LocalRay {
     fn confirm(&self, t: [&Vec3; 3], p: [[f64; 3]; 3], e: [(f64, f64); 3]) -> Option<f64> {
         // A ray starting on the triangle hits it at exactly 0, whatever its direction (in the
         // triangle's plane too) and whatever the projection's rounding says.
-        if self.from_triangle(t).is_some() {
+        if self.starts_on(t).is_some() {
             return Some(0.0);
         }
         let [a, b, c] = p;
