@@ -282,3 +282,38 @@ fn rotation_log_of_noisy_half_turns() {
         }
     }
 }
+
+/// The tolerance's documented edge: INFINITY (and the largest double) is contact at 0, with the
+/// distance and closest pair at the start, after one distance query; even when the models are
+/// far apart and one turns a half turn.
+#[test]
+fn an_infinite_tolerance_is_contact_at_zero() {
+    let bar = cuboid([0.0, -0.1, -0.1], [2.0, 0.1, 0.1]);
+    let cube = cuboid([-0.2; 3], [0.2; 3]);
+    let far = Pose::from_translation([1e6, 0.0, 0.0]);
+    let ra = Mat3::new(0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+    let turning = Motion::new(
+        Pose {
+            rotation: ra,
+            translation: Vec3::zeros(),
+        },
+        Pose {
+            rotation: ra * half_turn(&Vec3::z()),
+            translation: Vec3::zeros(),
+        },
+    );
+    for tol in [f64::INFINITY, f64::MAX] {
+        let c = time_of_contact(
+            &bar.model(),
+            &turning,
+            &cube.model(),
+            &Motion::new(far, far),
+            tol,
+        )
+        .unwrap();
+        assert!(c.contact && c.toc == 0.0 && c.steps == 1, "{c:?}");
+        let d = brute_distance(&bar, &turning.start, &cube, &far);
+        assert!((c.distance - d).abs() <= 1e-9 * d, "{} vs {d}", c.distance);
+        assert!(((c.point1 - c.point2).norm() - c.distance).abs() <= 1e-9 * d);
+    }
+}
