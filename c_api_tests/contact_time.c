@@ -103,6 +103,22 @@ int main(void)
         CHECK(c.contact);
     }
 
+    /* Issue 38: a half turn from Ra = [0 0 1; 1 0 0; 0 1 0] to Rb = [0 0 1; -1 0 0; 0 -1 0]
+     * (Ra^T Rb = diag(-1, -1, 1)) turns +pi about Ra's body z, the world x axis: b's corner
+     * (1, 0, 0) goes from world (0, 1, 0) through (0, 0, 1) at t = 1/2 to (0, -1, 0), b sweeping
+     * the half y < 0 of the (y, z) plane by z > 0 only. So a box at y in [-1.7, -0.7], z in
+     * [0.1, 1.1] is touched before t = 1/2; one at y in [0.7, 1.7], z in [-1.1, -0.1] never
+     * (turning the other way round, only that one would be). */
+    {
+        const double Ra[9] = {0, 0, 1, 1, 0, 0, 0, 1, 0}, Rb[9] = {0, 0, 1, -1, 0, 0, 0, -1, 0};
+        const double up[3] = {0, -1.7, 0.1}, down[3] = {0, 0.7, -1.1};
+        CHECK_EQ(pqp_time_of_contact(&c, I3, up, I3, up, a, Ra, ZERO, Rb, ZERO, b, 0.01), PQP_OK);
+        CHECK(c.contact && c.toc > 0.2 && c.toc < 0.5);
+        CHECK_EQ(pqp_time_of_contact(&c, I3, down, I3, down, a, Ra, ZERO, Rb, ZERO, b, 0.01),
+                 PQP_OK);
+        CHECK(!c.contact);
+    }
+
     /* A thin triangle fence (8 triangles at x = 0..7) crossed at high speed: the first one hit. */
     {
         double from[3] = {-1000, 0.1, 0.1}, to[3] = {1000, 0.1, 0.1};

@@ -4,6 +4,7 @@
 #include <pqp/pqp.h>
 
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -250,6 +251,44 @@ static void bad_meshes(void)
     memcpy(v, CUBE, sizeof CUBE);
     v[4] = NAN;
     CHECK_EQ(pqp_convex_model_from_triangles(&m, v, 8, tris, 12), PQP_ERR_NONFINITE_COORDINATE);
+    CHECK(m == NULL);
+}
+
+/* Counts past their documented limits are refused with PQP_ERR_INVALID_ARGUMENT before anything
+ * is allocated or read: the arrays given are small and real, so reading by the count would run
+ * past them (AddressSanitizer in the CMake build) or allocating by it fail. */
+static void counts_past_their_limits(void)
+{
+    static const int past[4] = {(1 << 30) + 1, (1 << 30) + 2, INT_MAX - 1, INT_MAX};
+    int tris[12 * 3], more[16 * 3], k;
+    pqp_convex_model *m = NULL;
+    cube_triangles(tris);
+    for (k = 0; k < 4; k++) {
+        CHECK_EQ(pqp_convex_model_from_points(&m, CUBE, past[k]), PQP_ERR_INVALID_ARGUMENT);
+        CHECK_EQ(pqp_convex_model_from_triangles(&m, CUBE, past[k], tris, 12),
+                 PQP_ERR_INVALID_ARGUMENT);
+        CHECK_EQ(pqp_convex_model_from_polygons(&m, CUBE, past[k], QUAD_COUNTS, 6, QUADS, 24),
+                 PQP_ERR_INVALID_ARGUMENT);
+        /* More triangles, faces or indices than any closed mesh on the 8 vertices has. */
+        CHECK_EQ(pqp_convex_model_from_triangles(&m, CUBE, 8, tris, past[k]),
+                 PQP_ERR_INVALID_ARGUMENT);
+        CHECK_EQ(pqp_convex_model_from_polygons(&m, CUBE, 8, QUAD_COUNTS, past[k], QUADS, 24),
+                 PQP_ERR_INVALID_ARGUMENT);
+        CHECK_EQ(pqp_convex_model_from_polygons(&m, CUBE, 8, QUAD_COUNTS, 6, QUADS, past[k]),
+                 PQP_ERR_INVALID_ARGUMENT);
+    }
+    /* Just past the mesh limits: 2 V + 1 triangles or faces, 6 V + 1 indices. */
+    CHECK_EQ(pqp_convex_model_from_triangles(&m, CUBE, 8, tris, 17), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_convex_model_from_triangles(&m, CUBE, 4, tris, 9), PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_convex_model_from_polygons(&m, CUBE, 8, QUAD_COUNTS, 17, QUADS, 24),
+             PQP_ERR_INVALID_ARGUMENT);
+    CHECK_EQ(pqp_convex_model_from_polygons(&m, CUBE, 8, QUAD_COUNTS, 6, QUADS, 49),
+             PQP_ERR_INVALID_ARGUMENT);
+    /* At the limit the arrays are read: 16 triangles (the cube's and four repeated) are no
+     * convex mesh. */
+    memcpy(more, tris, sizeof tris);
+    memcpy(more + 12 * 3, tris, 4 * 3 * sizeof(int));
+    CHECK_EQ(pqp_convex_model_from_triangles(&m, CUBE, 8, more, 16), PQP_ERR_INVALID_CONVEX_MESH);
     CHECK(m == NULL);
 }
 
@@ -529,6 +568,7 @@ int main(void)
     null_handles_and_getters();
     bad_point_sets();
     bad_meshes();
+    counts_past_their_limits();
     accessors();
     bad_queries();
     answers();

@@ -103,6 +103,137 @@ static void posed_box(const pqp_model *box)
     CHECK_NEAR(fabs(h.normal[1]), 1.0, 1e-15);
 }
 
+/* Whether p lies on the closed triangle t, exactly (every coordinate a multiple of 1/4 and small:
+ * integer arithmetic on 4 x the coordinates); never for a triangle without area. */
+static int on_triangle(double t[3][3], const double p[3])
+{
+    long long a[3], u[3], v[3], w[3], n[3], k;
+    int i, e;
+    for (i = 0; i < 3; i++) {
+        a[i] = (long long)(4 * t[0][i]);
+        u[i] = (long long)(4 * t[1][i]) - a[i];
+        v[i] = (long long)(4 * t[2][i]) - a[i];
+        w[i] = (long long)(4 * p[i]) - a[i];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    if ((n[0] == 0 && n[1] == 0 && n[2] == 0) || n[0] * w[0] + n[1] * w[1] + n[2] * w[2] != 0)
+        return 0;
+    /* In the plane: on the inner side of (or on) every edge, measured along the normal. */
+    for (e = 0; e < 3; e++) {
+        long long x[3], f[3], g[3], m[3];
+        for (i = 0; i < 3; i++) {
+            x[i] = (long long)(4 * t[e][i]);
+            f[i] = (long long)(4 * t[(e + 1) % 3][i]) - x[i];
+            g[i] = (long long)(4 * p[i]) - x[i];
+        }
+        m[0] = f[1] * g[2] - f[2] * g[1];
+        m[1] = f[2] * g[0] - f[0] * g[2];
+        m[2] = f[0] * g[1] - f[1] * g[0];
+        k = m[0] * n[0] + m[1] * n[1] + m[2] * n[2];
+        if (k < 0) return 0;
+    }
+    return 1;
+}
+
+/* Rays starting on a triangle hit it at t = 0, max_t = 0 included: the single triangle of issue 38,
+ * and every point on the 1/4 grid of the surface of the box [0, 4]^3 whose faces are cut into 4 x 4
+ * squares of two triangles, in 17 directions (along and across the faces), at the identity and at
+ * an exact pose; the triangle reported is the first added that the origin lies on. */
+static void from_the_surface(void)
+{
+    enum { N = 4, TRIS = 6 * N * N * 2 };
+    static double tris[TRIS][3][3];
+    /* A rotation of the cube (x -> y -> z -> x) and an integer translation: exact. */
+    static const double P[9] = {0, 0, 1, 1, 0, 0, 0, 1, 0}, TP[3] = {-3, 7, 2};
+    static const double D[17][3] = {
+        {1, 0, 0},   {-1, 0, 0},   {0, 1, 0},        {0, -1, 0},      {0, 0, 1},  {0, 0, -1},
+        {1, 1, 1},   {1, 1, -1},   {1, -1, 1},       {1, -1, -1},     {-1, 1, 1}, {-1, 1, -1},
+        {-1, -1, 1}, {-1, -1, -1}, {0.3, -1.7, 0.9}, {-2.5, 0.1, 0.6}, {1, 0.5, 0}};
+    pqp_model *one = pqp_model_create(), *box = pqp_model_create();
+    int axis, side, i, j, k, x, y, z, pose, count = 0, misses = 0;
+    {
+        const double a[3] = {-2, -2, -1}, b[3] = {-2, -1, 0}, c[3] = {-2, -1, -1};
+        const double o[3] = {-2, -1.5, -0.75}, d[3] = {-1.5, -1.75, -0.625};
+        const double max_t[2] = {0.0, INFINITY};
+        CHECK(one != NULL && box != NULL);
+        if (one == NULL || box == NULL) return;
+        CHECK_EQ(pqp_model_begin(one, 1), PQP_OK);
+        CHECK_EQ(pqp_model_add_tri(one, a, b, c, 0), PQP_OK);
+        CHECK_EQ(pqp_model_end(one), PQP_OK);
+        for (k = 0; k < 2; k++) {
+            pqp_ray_hit h;
+            CHECK_EQ(pqp_ray_cast(&h, I, T0, one, o, d, max_t[k]), PQP_OK);
+            CHECK(h.t == 0.0 && h.triangle == 0);
+            CHECK(h.point[0] == o[0] && h.point[1] == o[1] && h.point[2] == o[2]);
+        }
+    }
+    k = 0;
+    for (axis = 0; axis < 3; axis++)
+        for (side = 0; side <= N; side += N)
+            for (i = 0; i < N; i++)
+                for (j = 0; j < N; j++) {
+                    double c[4][3];
+                    int q, order[6];
+                    for (q = 0; q < 4; q++) {
+                        c[q][axis] = side;
+                        c[q][(axis + 1) % 3] = i + (q == 1 || q == 2);
+                        c[q][(axis + 2) % 3] = j + (q >= 2);
+                    }
+                    if ((i + j) % 2 == 0) {
+                        order[0] = 0, order[1] = 1, order[2] = 2;
+                        order[3] = 0, order[4] = 2, order[5] = 3;
+                    } else {
+                        order[0] = 0, order[1] = 1, order[2] = 3;
+                        order[3] = 1, order[4] = 2, order[5] = 3;
+                    }
+                    for (q = 0; q < 6; q++)
+                        memcpy(tris[k + q / 3][q % 3], c[order[q]], sizeof c[0]);
+                    k += 2;
+                }
+    CHECK_EQ(pqp_model_begin(box, TRIS), PQP_OK);
+    for (k = 0; k < TRIS; k++)
+        CHECK_EQ(pqp_model_add_tri(box, tris[k][0], tris[k][1], tris[k][2], k), PQP_OK);
+    CHECK_EQ(pqp_model_end(box), PQP_OK);
+    for (x = 0; x <= 4 * N; x++)
+        for (y = 0; y <= 4 * N; y++)
+            for (z = 0; z <= 4 * N; z++) {
+                double o[3];
+                int first = -1;
+                if (x % (4 * N) && y % (4 * N) && z % (4 * N)) continue; /* not on the surface */
+                o[0] = x / 4.0, o[1] = y / 4.0, o[2] = z / 4.0;
+                for (k = 0; k < TRIS && first < 0; k++)
+                    if (on_triangle(tris[k], o)) first = k;
+                CHECK(first >= 0);
+                for (pose = 0; pose < 2; pose++) {
+                    const double *R = pose ? P : I, *T = pose ? TP : T0;
+                    double wo[3];
+                    for (i = 0; i < 3; i++)
+                        wo[i] = R[3 * i] * o[0] + R[3 * i + 1] * o[1] + R[3 * i + 2] * o[2] + T[i];
+                    for (j = 0; j < 17; j++) {
+                        double wd[3];
+                        for (i = 0; i < 3; i++)
+                            wd[i] = R[3 * i] * D[j][0] + R[3 * i + 1] * D[j][1] +
+                                    R[3 * i + 2] * D[j][2];
+                        for (k = 0; k < 2; k++) {
+                            pqp_ray_hit h;
+                            count++;
+                            CHECK_EQ(pqp_ray_cast(&h, R, T, box, wo, wd, k ? INFINITY : 0.0),
+                                     PQP_OK);
+                            if (!(h.t == 0.0 && h.triangle == first && h.point[0] == wo[0] &&
+                                  h.point[1] == wo[1] && h.point[2] == wo[2]))
+                                misses++;
+                        }
+                    }
+                }
+            }
+    CHECK(count == (17 * 17 * 17 - 15 * 15 * 15) * 2 * 17 * 2);
+    CHECK_EQ(misses, 0);
+    pqp_model_destroy(one);
+    pqp_model_destroy(box);
+}
+
 /* Batches: the same answers as single calls, on 0, 1, 2 and 64 threads. */
 static void batches(const pqp_model *box)
 {
@@ -232,6 +363,7 @@ int main(void)
     if (box == NULL) CHECK_DONE("ray");
     box_answers(box);
     posed_box(box);
+    from_the_surface();
     batches(box);
     errors(box);
     pqp_model_destroy(box);

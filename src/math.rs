@@ -264,9 +264,17 @@ pub fn axis_angle_rotation(axis: &Vec3, angle: f64) -> Mat3 {
     Mat3::identity() + k * s + k * k * (1.0 - c)
 }
 
+/// How close to pi (in radians) a turn is taken as a half turn by [`rotation_log`]: a relative
+/// turn given as exactly pi comes out of the projections and products of its rotations within a
+/// few 1e-16 of it, on either side, so which way is shorter is the rounding's choice.
+pub const HALF_TURN_TOLERANCE: f64 = 1e-12;
+
 /// The logarithm of a rotation `q` as a unit axis and an angle in `[0, pi]`, the shorter way:
-/// `q = axis_angle_rotation(axis, angle)`. For an angle of exactly pi (both ways are as short) the
-/// axis is the one whose largest-magnitude component is positive; for angle 0 it is the x axis.
+/// `q = axis_angle_rotation(axis, angle)`. A turn within [`HALF_TURN_TOLERANCE`] of pi is a half
+/// turn (both ways are as short): its angle is `pi` (the double nearest to it) and its axis the one
+/// whose largest-magnitude component is positive (when several components are equal in magnitude
+/// to within [`HALF_TURN_TOLERANCE`], the first of them: x before y before z). For angle 0 the axis
+/// is the x axis.
 pub fn rotation_log(q: &Mat3) -> (Vec3, f64) {
     // The skew part of q is sin(angle) [axis]x, its trace 1 + 2 cos(angle).
     let w = 0.5 * Vec3::new(q.m32 - q.m23, q.m13 - q.m31, q.m21 - q.m12);
@@ -281,14 +289,26 @@ pub fn rotation_log(q: &Mat3) -> (Vec3, f64) {
         return (w / s, angle);
     }
     // Near pi sin(angle) vanishes; the symmetric part (q + q^T)/2 = c I + (1 - c) axis axis^T gives
-    // the axis up to sign through its column of largest diagonal entry (that component is then
-    // positive), and the skew part gives the sign.
+    // the axis up to sign through its column of largest diagonal entry, and the skew part gives
+    // the sign, unless the turn is a half turn to within the tolerance (|w| = sin(pi - angle)).
     let a = (0.5 * (q + q.transpose()) - Mat3::identity() * c) / (1.0 - c);
     let j = (0..3)
         .max_by(|&i, &k| a[(i, i)].total_cmp(&a[(k, k)]).then(k.cmp(&i)))
         .unwrap_or(0);
     let mut axis = a.column(j).into_owned();
     axis /= axis.norm();
+    if s <= HALF_TURN_TOLERANCE {
+        // The documented half turn: the first component within the tolerance of the largest
+        // magnitude is made positive.
+        let m = axis.amax();
+        let k = (0..3)
+            .find(|&k| axis[k].abs() >= m - HALF_TURN_TOLERANCE)
+            .unwrap_or(0);
+        if axis[k] < 0.0 {
+            axis = -axis;
+        }
+        return (axis, std::f64::consts::PI);
+    }
     if axis.dot(&w) < 0.0 {
         axis = -axis;
     }
@@ -310,7 +330,9 @@ pub struct RotationPath {
 impl RotationPath {
     /// The path from `start` to `end`, each first projected to its [`nearest_rotation`];
     /// `Err(InvalidArgument)` if either is not a rotation to within [`ROTATION_TOLERANCE`]. A
-    /// relative turn of exactly pi turns as [`rotation_log`] says.
+    /// relative turn of pi (to within [`HALF_TURN_TOLERANCE`]) turns as [`rotation_log`] says:
+    /// right-handed by +pi about the axis, in `start`'s frame, whose largest-magnitude component is
+    /// positive.
     pub fn new(start: &Mat3, end: &Mat3) -> Result<RotationPath, Error> {
         let (start, end) = (nearest_rotation(start)?, nearest_rotation(end)?);
         let (axis, angle) = rotation_log(&(start.transpose() * end));

@@ -336,8 +336,8 @@ fn watertight_through_vertices_and_edges() {
             }
         }
         // On the boxes (integer vertices), axis-aligned rays through the targets from points level
-        // with the inside point: exact arithmetic all the way. (Not from the surface: a ray along
-        // a box's edge lies in both faces' planes, and meets nothing until the next face across.)
+        // with the inside point: exact arithmetic all the way. (Not from the surface: a ray starting
+        // on it hits at 0, tests/ray_origins.rs.)
         let Some(side) = side else {
             continue;
         };

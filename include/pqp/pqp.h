@@ -1412,9 +1412,11 @@ int pqp_signed_distance(double *out,
  *
  * Watertight: a ray through an edge or a vertex shared by triangles of a closed mesh hits one of
  * them, never slips between. Triangles are hit from either side. A ray lying in a triangle's plane
- * does not hit that triangle (it hits its neighbours' edges); a triangle without area is never
- * hit. A ray starting on a triangle hits it at t = 0. Among hits at the same t, the triangle added
- * first is reported. See pqp_ray_hit for the accuracy.
+ * does not hit that triangle (it hits its neighbours' edges) unless it starts on it; a triangle
+ * without area is never hit. A ray starting on a triangle (inside it, on an edge or on a vertex,
+ * exactly: the origin brought into the model's frame, R^T (origin - T), is a point of the
+ * triangle) hits it at t = 0, whatever its direction, max_t = 0 included. Among hits at the same
+ * t, the triangle added first is reported. See pqp_ray_hit for the accuracy.
  *
  * @param hit        where the answer is written (only on PQP_OK).
  * @param R, T       the model's pose (as for pqp_collide).
@@ -1584,10 +1586,12 @@ int pqp_model_refit(struct pqp_model *m, const double *triangles, size_t num_tri
  *
  * Each model moves from pose a (t = 0) to pose b (t = 1): its translation linearly, its rotation
  * at constant angular velocity about a fixed axis, R(t) = Ra exp(t log(Ra^T Rb)), the shorter
- * way; a relative turn of exactly pi turns (right-handed, by +pi) about the axis, in Ra's frame,
- * whose largest-magnitude component is positive. Rotations orthonormal to within 1e-6 (every
- * entry of R^T R - I at most 1e-6, determinant positive) are accepted and projected to the
- * nearest rotation first.
+ * way; a relative turn of exactly pi (to within 1e-12 radians, which the rounding of the
+ * rotations cannot tell from it) turns right-handed, by +pi, about the axis, in Ra's frame, whose
+ * largest-magnitude component is positive (when components are equal in magnitude, the first of
+ * them: x before y before z), whatever Ra. Rotations orthonormal to within 1e-6 (every singular
+ * value within 1e-6 of 1, determinant positive) are accepted and projected to the nearest
+ * rotation first.
  *
  * Guarantees (up to the rounding of poses and distances): with contact, the distance at toc is
  * at most tolerance and above 0.999 tolerance at every earlier time, so the models never overlap
@@ -1810,11 +1814,11 @@ int pqp_model_deserialize(struct pqp_model *m, const void *buffer, size_t size);
  * @param xyz  the points, 3 doubles each (x, y, z in the model's frame), n * 3 doubles in all.
  * @param n    the number of points, >= 0.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out or xyz is NULL (even when n is 0);
- *         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30; PQP_ERR_NONFINITE_COORDINATE if a
- *         coordinate is NaN, infinite or larger than 1e150 in magnitude;
- *         PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer than four
- *         distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY if the
- *         model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
+ *         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30 (checked before xyz is read);
+ *         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
+ *         magnitude; PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer
+ *         than four distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY
+ *         if the model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
  * Thread safety: may be called from any thread at any time.
  */
 int pqp_convex_model_from_points(struct pqp_convex_model **out, const double *xyz, int n);
@@ -1834,8 +1838,10 @@ int pqp_convex_model_from_points(struct pqp_convex_model **out, const double *xy
  * @param triangles      vertex indices, 3 per triangle, num_triangles * 3 ints in all.
  * @param num_triangles  the number of triangles, >= 0.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz or triangles is NULL;
- *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large, or an index is negative or
- *         >= num_vertices; PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30 or
+ *         num_triangles > 2 num_vertices: a closed mesh has 2 num_vertices - 4; both checked
+ *         before any array is read), or an index is negative or >= num_vertices;
+ *         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
  *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (open,
  *         inconsistently oriented, inside out, not convex, flat, an unused vertex, fewer than 4
  *         vertices or faces); PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
@@ -1862,8 +1868,11 @@ int pqp_convex_model_from_triangles(struct pqp_convex_model **out,
  * @param indices       the faces' vertex indices, concatenated, num_indices ints.
  * @param num_indices   the number of indices: must equal the sum of counts.
  * @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz, counts or indices is NULL;
- *         PQP_ERR_INVALID_ARGUMENT if a count is negative, a face count is below 3, the counts do
- *         not sum to num_indices, or an index is negative or >= num_vertices;
+ *         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30,
+ *         num_faces > 2 num_vertices or num_indices > 6 num_vertices: a closed polyhedron has at
+ *         most 2 num_vertices - 4 faces and 6 num_vertices - 12 indices; checked before the
+ *         arrays they count are read), a face count is below 3, the counts do not sum to
+ *         num_indices, or an index is negative or >= num_vertices;
  *         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
  *         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (as for
  *         pqp_convex_model_from_triangles, or a face not planar or not strictly convex);

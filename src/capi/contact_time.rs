@@ -30,10 +30,12 @@ pub struct pqp_contact_time {
 ///
 /// Each model moves from pose a (t = 0) to pose b (t = 1): its translation linearly, its rotation
 /// at constant angular velocity about a fixed axis, R(t) = Ra exp(t log(Ra^T Rb)), the shorter
-/// way; a relative turn of exactly pi turns (right-handed, by +pi) about the axis, in Ra's frame,
-/// whose largest-magnitude component is positive. Rotations orthonormal to within 1e-6 (every
-/// entry of R^T R - I at most 1e-6, determinant positive) are accepted and projected to the
-/// nearest rotation first.
+/// way; a relative turn of exactly pi (to within 1e-12 radians, which the rounding of the
+/// rotations cannot tell from it) turns right-handed, by +pi, about the axis, in Ra's frame, whose
+/// largest-magnitude component is positive (when components are equal in magnitude, the first of
+/// them: x before y before z), whatever Ra. Rotations orthonormal to within 1e-6 (every singular
+/// value within 1e-6 of 1, determinant positive) are accepted and projected to the nearest
+/// rotation first.
 ///
 /// Guarantees (up to the rounding of poses and distances): with contact, the distance at toc is
 /// at most tolerance and above 0.999 tolerance at every earlier time, so the models never overlap

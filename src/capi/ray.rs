@@ -61,9 +61,11 @@ const NO_HIT: pqp_ray_hit = pqp_ray_hit {
 ///
 /// Watertight: a ray through an edge or a vertex shared by triangles of a closed mesh hits one of
 /// them, never slips between. Triangles are hit from either side. A ray lying in a triangle's plane
-/// does not hit that triangle (it hits its neighbours' edges); a triangle without area is never
-/// hit. A ray starting on a triangle hits it at t = 0. Among hits at the same t, the triangle added
-/// first is reported. See pqp_ray_hit for the accuracy.
+/// does not hit that triangle (it hits its neighbours' edges) unless it starts on it; a triangle
+/// without area is never hit. A ray starting on a triangle (inside it, on an edge or on a vertex,
+/// exactly: the origin brought into the model's frame, R^T (origin - T), is a point of the
+/// triangle) hits it at t = 0, whatever its direction, max_t = 0 included. Among hits at the same
+/// t, the triangle added first is reported. See pqp_ray_hit for the accuracy.
 ///
 /// @param hit        where the answer is written (only on PQP_OK).
 /// @param R, T       the model's pose (as for pqp_collide).

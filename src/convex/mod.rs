@@ -39,6 +39,7 @@ mod predicates;
 mod vclip;
 
 pub use model::ConvexModel;
+pub(crate) use model::MAX_POINTS;
 
 use crate::error::Error;
 use crate::math::{Pose, RelPose, Vec3};

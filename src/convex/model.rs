@@ -85,9 +85,13 @@ pub struct ConvexModel {
     radius: f64,
 }
 
+/// The most points (or vertices) a convex model is made from: 2^30, so that vertex indices and
+/// feature counts stay far inside 32 bits.
+pub(crate) const MAX_POINTS: usize = 1 << 30;
+
 /// Checks coordinates and converts them.
 fn import_points(points: &[[f64; 3]]) -> Result<Vec<Vec3>, Error> {
-    if points.len() > u32::MAX as usize / 4 {
+    if points.len() > MAX_POINTS {
         return Err(Error::InvalidArgument);
     }
     points

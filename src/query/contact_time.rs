@@ -112,8 +112,10 @@ impl Sweep {
 /// distance at each t.
 ///
 /// Rotations are accepted when orthonormal to within 1e-6 ([`crate::math::nearest_rotation`]) and
-/// projected to the nearest rotation first. A relative turn of exactly pi turns about the axis whose
-/// largest-magnitude component is positive ([`crate::math::rotation_log`]).
+/// projected to the nearest rotation first. A relative turn of exactly pi (to within
+/// [`crate::math::HALF_TURN_TOLERANCE`], 1e-12 radians) turns right-handed, by +pi, about the axis,
+/// in the start rotation's frame, whose largest-magnitude component is positive (the first of
+/// equal ones), whatever the start rotation ([`crate::math::rotation_log`]).
 ///
 /// Errors: `InvalidArgument` for a tolerance not above 0 (or NaN), or a rotation that is not one;
 /// `UnprocessedModel` for an unbuilt model; `NonFinitePose` for a pose entry NaN, infinite or

@@ -19,6 +19,7 @@ mod point;
 mod primitive;
 mod queue;
 mod ray;
+mod ray_triangle;
 pub(crate) mod search;
 mod self_collide;
 mod strategy;

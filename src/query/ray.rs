@@ -27,12 +27,21 @@
 //! entry lies beyond the best hit so far are pruned.
 //! Among hits at the same `t`, the triangle added first wins, so the answer does not depend on the
 //! order of the search.
+//!
+//! **From a triangle.** A ray whose origin lies exactly on a triangle hits it at `t = 0`, whatever
+//! the rounding of the projection says (it can put an origin on an edge just outside, or give an
+//! origin inside a `t` of a few ulps). Wherever the origin lies in a triangle's box (exact
+//! comparisons, a few per triangle on the search's paths that reject or confirm), an exact test
+//! decides whether the origin is on it: in its plane (exact `orient3d`) and on the closed triangle
+//! (exact `orient2d` signs in a coordinate plane on which the triangle has area).
 
 use super::batch::{Workers, answer_all};
+use super::ray_triangle::{
+    edge, edge_sign, origin_on_triangle, triangle_normal, weights, zero_area,
+};
 use crate::bvh::{Bvh, Lane, MAX_DEPTH, RayTree, Slab, SlabRay};
 use crate::error::{Error, MAX_COORDINATE};
-use crate::geometry::Tri;
-use crate::geometry::predicates::{cross_accurate, exponent, max_abs, orient2d, pow2, two_prod};
+use crate::geometry::predicates::{exponent, max_abs, pow2};
 use crate::math::{Pose, Vec3};
 use crate::model::Model;
 use std::mem::MaybeUninit;
@@ -64,13 +73,6 @@ pub struct RayHit {
 /// below it (an origin and a translation up to [`MAX_COORDINATE`], a rotation); beyond it (poses
 /// that are not rotations) the edge functions could overflow, and the ray hits nothing.
 const MAX_LOCAL: f64 = 4.0 * MAX_COORDINATE;
-
-/// Relative error bound of an edge function `l - r` computed from rounded products `l`, `r`:
-/// comfortably above its three roundings.
-const EDGE_ERR: f64 = 4.0 * f64::EPSILON;
-
-/// Absolute part of the edge functions' error bound: covers products that underflow.
-const EDGE_UNDERFLOW: f64 = 1e-300;
 
 /// Ray casts against one model at one pose: the checked query arguments, shared by every ray.
 pub(crate) struct RayCaster<'a> {
@@ -252,15 +254,49 @@ impl LocalRay {
         let neg = (e[0].0 < -e[0].1) | (e[1].0 < -e[1].1) | (e[2].0 < -e[2].1);
         let pos = (e[0].0 > e[0].1) | (e[1].0 > e[1].1) | (e[2].0 > e[2].1);
         if neg && pos {
-            return None;
+            // Surely missed, unless the origin lies on the triangle (then the rounding of the
+            // projection can put it just outside): only possible where the triangle's vertices
+            // are not all on one side of the origin along the dominant axis (the signs of the
+            // `z`, differences of two doubles, are exact), the rest decided out of line.
+            let (za, zb, zc) = (a[2], b[2], c[2]);
+            if (za > 0.0 && zb > 0.0 && zc > 0.0) || (za < 0.0 && zb < 0.0 && zc < 0.0) {
+                return None;
+            }
+            return self.starts_on(t);
         }
         self.confirm(t, [a, b, c], e)
+    }
+
+    /// `Some(0.0)` if the origin lies on triangle `t` (exactly), else `None`.
+    #[inline(never)]
+    fn starts_on(&self, t: [&Vec3; 3]) -> Option<f64> {
+        (self.origin_in_box(t) && origin_on_triangle(t, &self.o)).then_some(0.0)
+    }
+
+    /// Whether the origin lies in the box of triangle `t` (exact comparisons): a cheap necessary
+    /// condition for [`origin_on_triangle`].
+    #[inline(always)]
+    fn origin_in_box(&self, t: [&Vec3; 3]) -> bool {
+        let o = &self.o;
+        let lo = t[0].inf(t[1]).inf(t[2]);
+        let hi = t[0].sup(t[1]).sup(t[2]);
+        (lo.x <= o.x)
+            & (o.x <= hi.x)
+            & (lo.y <= o.y)
+            & (o.y <= hi.y)
+            & (lo.z <= o.z)
+            & (o.z <= hi.z)
     }
 
     /// [`hit`](LocalRay::hit) past its quick rejection: `p` the projected vertices, `e` the
     /// filtered edge functions.
     #[inline(never)]
     fn confirm(&self, t: [&Vec3; 3], p: [[f64; 3]; 3], e: [(f64, f64); 3]) -> Option<f64> {
+        // A ray starting on the triangle hits it at exactly 0, whatever its direction (in the
+        // triangle's plane too) and whatever the projection's rounding says.
+        if self.starts_on(t).is_some() {
+            return Some(0.0);
+        }
         let [a, b, c] = p;
         let s = [
             edge_sign(e[0], &b, &c),
@@ -405,82 +441,6 @@ impl LocalRay {
     }
 }
 
-/// The edge function of `p`, `q` about the ray (`p x q` in the plane across it), with a bound on
-/// its rounding error.
-#[inline(always)]
-fn edge(p: &[f64; 3], q: &[f64; 3]) -> (f64, f64) {
-    let (l, r) = (p[0] * q[1], p[1] * q[0]);
-    (l - r, EDGE_ERR * (l.abs() + r.abs()) + EDGE_UNDERFLOW)
-}
-
-/// The exact sign of an edge function (-1, 0, 1), from its filtered value or exactly.
-#[inline]
-fn edge_sign((v, err): (f64, f64), p: &[f64; 3], q: &[f64; 3]) -> i8 {
-    let v = if v.abs() > err {
-        v
-    } else {
-        // (q - p) x (0 - p) = p x q, with an exact sign.
-        orient2d([p[0], p[1]], [q[0], q[1]], [0.0, 0.0])
-    };
-    (v > 0.0) as i8 - (v < 0.0) as i8
-}
-
-/// The barycentric weights of the ray's point in the projected triangle `v` (summing to 1), each
-/// to a few ulps: the edge functions recomputed on coordinates scaled by a power of two (no under-
-/// or overflow) with exact products, their signs `s` being the exact ones.
-fn weights(v: &[[f64; 3]; 3], s: [i8; 3]) -> [f64; 3] {
-    let m = v
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
-    let k = pow2((-exponent(m)).clamp(-1022, 1023));
-    let p = v.map(|p| [p[0] * k, p[1] * k]);
-    let f = |a: [f64; 2], b: [f64; 2], s: i8| {
-        let (x, ex) = two_prod(a[0], b[1]);
-        let (y, ey) = two_prod(a[1], b[0]);
-        let w = (x - y) + (ex - ey);
-        // Keep the exact sign (products that underflow can disagree with it).
-        if (w > 0.0) as i8 - (w < 0.0) as i8 == s {
-            w
-        } else {
-            0.0
-        }
-    };
-    let mut w = [
-        f(p[1], p[2], s[0]),
-        f(p[2], p[0], s[1]),
-        f(p[0], p[1], s[2]),
-    ];
-    let mut sum = w[0] + w[1] + w[2];
-    if sum == 0.0 {
-        // Every weight lost to underflow (coordinates spanning hundreds of orders of magnitude):
-        // some point of the triangle.
-        w = s.map(|s| f64::from(s.abs()));
-        sum = w[0] + w[1] + w[2];
-    }
-    w.map(|w| w / sum)
-}
-
-/// Whether triangle `t` has no area (its vertices are collinear), exactly: its normal's three
-/// components, the orientations of its projections on the coordinate planes, are all zero.
-fn zero_area(t: &Tri) -> bool {
-    [(0, 1), (1, 2), (2, 0)]
-        .iter()
-        .all(|&(i, j)| orient2d([t[0][i], t[0][j]], [t[1][i], t[1][j]], [t[2][i], t[2][j]]) == 0.0)
-}
-
-/// `(b - a) x (c - a)` of a triangle with area, to a few ulps, in some positive scale.
-fn triangle_normal(a: &Vec3, b: &Vec3, c: &Vec3) -> Vec3 {
-    let (e1, e2) = (b - a, c - a);
-    let k = pow2((-exponent(max_abs(&[&e1, &e2]))).clamp(-1022, 1023));
-    let n = cross_accurate(&(e1 * k), &(e2 * k));
-    if n != Vec3::zeros() {
-        return n;
-    }
-    // The edges' rounding made them parallel: the exact components' signs, approximate values.
-    let o = |i: usize, j: usize| orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]);
-    Vec3::new(o(1, 2), o(2, 0), o(0, 1))
-}
-
 /// `v` scaled to unit length (by a power of two first, so that its squares neither under- nor
 /// overflow).
 fn unit(v: &Vec3) -> Vec3 {
@@ -535,8 +495,10 @@ fn upper_scaled(x: f64, k: i32) -> f64 {
 /// The direction need not be a unit vector (`t` is in its units). Hits are watertight: a ray
 /// through an edge or a vertex shared by triangles of a closed mesh hits one of them. Triangles are
 /// hit from either side; a ray in a triangle's plane does not hit it (its neighbours' edges are
-/// hit), nor does any ray hit a triangle without area. A ray starting on a triangle hits it at
-/// `t = 0`. Among hits at the same `t`, the triangle added first is reported. See [`RayHit`] for
+/// hit) unless it starts on it, nor does any ray hit a triangle without area. A ray starting on a
+/// triangle (inside it, on an edge or on a vertex, exactly: the origin brought into the model's
+/// frame is a point of the triangle) hits it at `t = 0`, whatever its direction, `max_t = 0`
+/// included. Among hits at the same `t`, the triangle added first is reported. See [`RayHit`] for
 /// the accuracy.
 ///
 /// Errors: `UnprocessedModel` if the model is not built, `NonFinitePose` for a pose entry that is
@@ -624,205 +586,5 @@ impl RayCaster<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::test_rng::{Random, Rng};
-
-    /// The search against every triangle tested in turn with the same kernel: bit for bit the same
-    /// answer (the traversal loses nothing), on random soups and closed meshes, at random poses.
-    #[test]
-    fn search_equals_testing_every_triangle() {
-        let mut r = Rng(41);
-        for iter in 0..60 {
-            let n = 1 + r.below(300);
-            let size = [0.05, 0.5, 3.0][iter % 3];
-            let tris: Vec<(Tri, i32)> = (0..n)
-                .map(|i| {
-                    let c = Vec3::from(r.point(1.0));
-                    let t = [0, 1, 2].map(|_| c + Vec3::from(r.point(size)));
-                    (t, i as i32)
-                })
-                .collect();
-            let model = Model::from_triangles(
-                tris.iter()
-                    .map(|(t, id)| (t[0].into(), t[1].into(), t[2].into(), *id)),
-            )
-            .unwrap();
-            let bvh = model.bvh().unwrap();
-            for _ in 0..200 {
-                let o = Vec3::from(r.point(2.5));
-                let d = Vec3::from(r.direction()) * r.log_uniform(1e-3, 1e3);
-                let max_t = if r.below(4) == 0 {
-                    r.range(0.0, 3.0)
-                } else {
-                    f64::INFINITY
-                };
-                search_equals_brute_force(bvh, o, d, max_t);
-            }
-        }
-    }
-
-    /// Asserts that the search finds bit for bit what testing every triangle of `bvh` in turn
-    /// finds for the ray `o + t d` (`d`'s largest coordinate in `[1, 2)` or not: the search is
-    /// given it as it is); returns whether it hit.
-    fn search_equals_brute_force(bvh: &Bvh, o: Vec3, d: Vec3, max_t: f64) -> bool {
-        let ray = LocalRay::new(o, d, bvh.scale);
-        let tree = bvh.ray_tree().unwrap();
-        let fast = ray
-            .search(bvh, tree, max_t, |t| t <= max_t)
-            .map(|b| (b.t, tree.slot(b.at)));
-        let mut brute: Option<(f64, usize, u32)> = None;
-        for slot in 0..bvh.num_tris() {
-            if let Some(t) = ray.hit_slot(bvh, slot) {
-                let a = bvh.added[slot];
-                if t <= max_t && brute.is_none_or(|(bt, _, ba)| t < bt || (t == bt && a < ba)) {
-                    brute = Some((t, slot, a));
-                }
-            }
-        }
-        assert_eq!(fast, brute.map(|(t, s, _)| (t, s)), "{o:?} {d:?}");
-        fast.is_some()
-    }
-
-    /// The slab test's boxes lose no hit where rays graze them: rays in the planes of an
-    /// axis-aligned cube's faces, along its edges, through its corners, parallel to an axis or
-    /// nearly (direction components down to 1e-40, below the single-precision test's tilt), at
-    /// scales from 1e-25 to 1e140 (both the single- and the double-precision slab tests), each
-    /// against every triangle tested in turn; and every ray that should hit does.
-    #[test]
-    fn grazing_rays_at_every_scale_lose_nothing() {
-        let mut r = Rng(29);
-        for scale in [1e-25, 1e-9, 1.0, 3e7, 1e25, 1e31, 1e80, 1e140] {
-            // A closed cube [0, s]^3 (12 triangles), and small triangles lying on its faces'
-            // planes and across its edges, whose boxes are flat or thin.
-            let s = scale;
-            let c = |x: f64, y: f64, z: f64| [x * s, y * s, z * s];
-            let mut tris: Vec<[[f64; 3]; 3]> = Vec::new();
-            for axis in 0..3 {
-                for side in [0.0, 1.0] {
-                    let p = |u: f64, v: f64| {
-                        let mut q = [0.0; 3];
-                        q[axis] = side;
-                        q[(axis + 1) % 3] = u;
-                        q[(axis + 2) % 3] = v;
-                        c(q[0], q[1], q[2])
-                    };
-                    tris.push([p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]);
-                    tris.push([p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]);
-                    let (u, v) = (r.range(0.0, 0.9), r.range(0.0, 0.9));
-                    tris.push([p(u, v), p(u + 0.1, v), p(u, v + 0.1)]);
-                }
-            }
-            tris.push([c(1.0, 0.0, 0.0), c(1.0, 1.0, 0.0), c(1.2, 0.5, 0.0)]);
-            tris.push([c(0.0, 1.0, 1.0), c(0.0, 1.0, 0.0), c(0.0, 1.3, 0.5)]);
-            let model =
-                Model::from_triangles(tris.iter().zip(0..).map(|(t, i)| (t[0], t[1], t[2], i)))
-                    .unwrap();
-            let bvh = model.bvh().unwrap();
-            let coordinate = |r: &mut Rng| [0.0, 0.0, 1.0, 1.0, 0.5, r.range(0.0, 1.0)][r.below(6)];
-            let mut hits = 0;
-            for _ in 0..400 {
-                // From outside the cube or on its surface, along an axis, tilted a little off
-                // it, or at a corner's diagonal.
-                let mut o = [0.0; 3].map(|_| coordinate(&mut r));
-                let axis = r.below(3);
-                o[axis] = [-1.0, 0.0, 2.0][r.below(3)];
-                let mut d = [0.0; 3];
-                d[axis] = if o[axis] > 0.5 { -1.0 } else { 1.0 };
-                for (j, dj) in d.iter_mut().enumerate() {
-                    if j != axis && r.below(2) == 0 {
-                        *dj = [1e-40, -1e-40, 1e-20, -1e-7, 1.0][r.below(5)];
-                    }
-                }
-                let o = Vec3::from(c(o[0], o[1], o[2]));
-                let d = Vec3::from(d) * r.log_uniform(1e-3, 1e3);
-                hits += usize::from(search_equals_brute_force(bvh, o, d, f64::INFINITY));
-            }
-            assert!(hits > 100, "{scale}: {hits}");
-            // Straight at the middle of every face, from outside: always a hit.
-            for axis in 0..3 {
-                for (from, dir) in [(-1.0, 1.0), (2.0, -1.0)] {
-                    let mut o = [0.5; 3];
-                    o[axis] = from;
-                    let mut d = [0.0; 3];
-                    d[axis] = dir;
-                    let o = Vec3::from(c(o[0], o[1], o[2]));
-                    assert!(search_equals_brute_force(
-                        bvh,
-                        o,
-                        Vec3::from(d),
-                        f64::INFINITY
-                    ));
-                }
-            }
-        }
-    }
-
-    /// A tree large enough to be offered huge pages: the search equals testing every triangle.
-    #[test]
-    fn large_tree_equals_testing_every_triangle() {
-        // A wavy height field of 2 * 300 * 300 triangles: more than 32,768 nodes of 128 bytes.
-        let n = 300;
-        let h = |i: usize, j: usize| {
-            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-            [x, y, 0.05 * (13.0 * x).sin() * (17.0 * y).cos()]
-        };
-        let mut tris = Vec::new();
-        for i in 0..n {
-            for j in 0..n {
-                tris.push((h(i, j), h(i + 1, j), h(i + 1, j + 1), tris.len() as i32));
-                tris.push((h(i, j), h(i + 1, j + 1), h(i, j + 1), tris.len() as i32));
-            }
-        }
-        let model = Model::from_triangles(tris).unwrap();
-        let bvh = model.bvh().unwrap();
-        let mut r = Rng(5);
-        let mut hits = 0;
-        for _ in 0..40 {
-            let o = Vec3::new(r.range(-0.2, 1.2), r.range(-0.2, 1.2), r.range(0.3, 1.0));
-            let at = Vec3::new(r.range(0.0, 1.0), r.range(0.0, 1.0), 0.0);
-            hits += usize::from(search_equals_brute_force(bvh, o, at - o, f64::INFINITY));
-        }
-        assert!(hits > 20, "{hits}");
-    }
-
-    /// A refit drops the ray tree (its boxes are the old vertices'): casts after it see the new
-    /// positions.
-    #[test]
-    fn refit_remakes_the_ray_tree() {
-        let strip = |dx: f64| -> Vec<[[f64; 3]; 3]> {
-            (0..50)
-                .map(|i| {
-                    let x = dx + f64::from(i);
-                    [[x, 0.0, 0.0], [x + 1.0, 0.0, 0.0], [x, 1.0, 0.0]]
-                })
-                .collect()
-        };
-        let mut model = Model::from_triangles(
-            strip(0.0)
-                .iter()
-                .zip(0..)
-                .map(|(t, i)| (t[0], t[1], t[2], i)),
-        )
-        .unwrap();
-        let down = Vec3::new(0.0, 0.0, -1.0);
-        let at = |x: f64| Vec3::new(x, 0.25, 3.0);
-        let hit = |m: &Model, x: f64| ray_cast(m, &Pose::identity(), &at(x), &down, f64::INFINITY);
-        assert_eq!(hit(&model, 10.25).unwrap().unwrap().triangle, 10);
-        model.refit(&strip(100.0)).unwrap();
-        assert_eq!(hit(&model, 10.25).unwrap(), None);
-        let h = hit(&model, 110.25).unwrap().unwrap();
-        assert_eq!((h.triangle, h.t), (10, 3.0));
-    }
-
-    #[test]
-    fn scaling_helpers() {
-        for &x in &[1.0, 3.5e-310, 1e-300, 7e200, f64::MAX] {
-            let (v, k) = unit_scale(&Vec3::new(x, -x / 3.0, 0.0));
-            assert!((1.0..2.0).contains(&v.amax()), "{x}");
-            assert_eq!(scaled(v.x, k), x);
-        }
-        assert_eq!(upper_scaled(1e-300, -500), f64::from_bits(1));
-        assert_eq!(scaled(3.0, 2000), f64::INFINITY);
-    }
-}
+#[path = "ray_tests.rs"]
+mod tests;

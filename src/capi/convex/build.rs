@@ -2,6 +2,7 @@
 
 use super::super::{PQP_ERR_INTERNAL, boundary, code, destroy_handle, into_handle, read_doubles};
 use super::*;
+use crate::convex::MAX_POINTS;
 use crate::error::Error;
 use std::ptr;
 
@@ -10,7 +11,20 @@ fn length(n: c_int) -> Result<usize, Error> {
     usize::try_from(n).map_err(|_| Error::InvalidArgument)
 }
 
-/// Copies `n` points (3 doubles each) from C.
+/// A count from C, `0..=limit`, else `Err(InvalidArgument)`: checked before anything is allocated
+/// or read, so that a count past the documented limit never reads past the caller's array.
+fn length_at_most(n: c_int, limit: usize) -> Result<usize, Error> {
+    length(n).and_then(|n| {
+        if n > limit {
+            Err(Error::InvalidArgument)
+        } else {
+            Ok(n)
+        }
+    })
+}
+
+/// Copies `n` points (3 doubles each) from C: `Err(InvalidArgument)` for `n < 0` or
+/// `n > MAX_POINTS` (2^30), before anything is allocated or read.
 ///
 /// # Safety
 /// `xyz` is NULL or points to `3 n` readable doubles.
@@ -20,7 +34,7 @@ unsafe fn read_points(xyz: *const f64, n: c_int) -> Result<Vec<[f64; 3]>, Error>
         if xyz.is_null() {
             return Err(Error::NullPointer);
         }
-        let n = length(n)?;
+        let n = length_at_most(n, MAX_POINTS)?;
         let mut out = Vec::new();
         out.try_reserve_exact(n)
             .map_err(|_| Error::ModelOutOfMemory)?;
@@ -109,11 +123,11 @@ unsafe fn clear_out(out: *mut *mut pqp_convex_model) {
 /// @param xyz  the points, 3 doubles each (x, y, z in the model's frame), n * 3 doubles in all.
 /// @param n    the number of points, >= 0.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if out or xyz is NULL (even when n is 0);
-///         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30; PQP_ERR_NONFINITE_COORDINATE if a
-///         coordinate is NaN, infinite or larger than 1e150 in magnitude;
-///         PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer than four
-///         distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY if the
-///         model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
+///         PQP_ERR_INVALID_ARGUMENT if n < 0 or n > 2^30 (checked before xyz is read);
+///         PQP_ERR_NONFINITE_COORDINATE if a coordinate is NaN, infinite or larger than 1e150 in
+///         magnitude; PQP_ERR_DEGENERATE_POINTS if the points do not span a volume (n = 0, fewer
+///         than four distinct points, all collinear or all coplanar); PQP_ERR_MODEL_OUT_OF_MEMORY
+///         if the model could not be allocated; PQP_ERR_INTERNAL on an internal fault.
 /// Thread safety: may be called from any thread at any time.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn pqp_convex_model_from_points(
@@ -139,8 +153,10 @@ pub unsafe extern "C" fn pqp_convex_model_from_points(
 /// @param triangles      vertex indices, 3 per triangle, num_triangles * 3 ints in all.
 /// @param num_triangles  the number of triangles, >= 0.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz or triangles is NULL;
-///         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large, or an index is negative or
-///         >= num_vertices; PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
+///         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30 or
+///         num_triangles > 2 num_vertices: a closed mesh has 2 num_vertices - 4; both checked
+///         before any array is read), or an index is negative or >= num_vertices;
+///         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
 ///         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (open,
 ///         inconsistently oriented, inside out, not convex, flat, an unused vertex, fewer than 4
 ///         vertices or faces); PQP_ERR_MODEL_OUT_OF_MEMORY; PQP_ERR_INTERNAL on an internal fault.
@@ -157,7 +173,9 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
     unsafe {
         let make = || {
             let v = read_points(xyz, num_vertices)?;
-            let nt = length(num_triangles)?;
+            // A closed triangle mesh on V vertices has 2 V - 4 triangles: more than 2 V is too
+            // many, refused before the triangles are read.
+            let nt = length_at_most(num_triangles, 2 * v.len())?;
             let n = nt.checked_mul(3).ok_or(Error::InvalidArgument)?;
             let idx = read_indices(triangles, n)?;
             let counts = vec![3u32; nt];
@@ -181,8 +199,11 @@ pub unsafe extern "C" fn pqp_convex_model_from_triangles(
 /// @param indices       the faces' vertex indices, concatenated, num_indices ints.
 /// @param num_indices   the number of indices: must equal the sum of counts.
 /// @return PQP_OK; PQP_ERR_NULL_POINTER if out, xyz, counts or indices is NULL;
-///         PQP_ERR_INVALID_ARGUMENT if a count is negative, a face count is below 3, the counts do
-///         not sum to num_indices, or an index is negative or >= num_vertices;
+///         PQP_ERR_INVALID_ARGUMENT if a count is negative or too large (num_vertices > 2^30,
+///         num_faces > 2 num_vertices or num_indices > 6 num_vertices: a closed polyhedron has at
+///         most 2 num_vertices - 4 faces and 6 num_vertices - 12 indices; checked before the
+///         arrays they count are read), a face count is below 3, the counts do not sum to
+///         num_indices, or an index is negative or >= num_vertices;
 ///         PQP_ERR_NONFINITE_COORDINATE for a NaN, infinite or huge coordinate;
 ///         PQP_ERR_INVALID_CONVEX_MESH if the mesh is not a closed convex polyhedron (as for
 ///         pqp_convex_model_from_triangles, or a face not planar or not strictly convex);
@@ -202,11 +223,14 @@ pub unsafe extern "C" fn pqp_convex_model_from_polygons(
     unsafe {
         let make = || {
             let v = read_points(xyz, num_vertices)?;
-            let counts = read_indices(counts, length(num_faces)?)?;
+            // A closed polyhedron on V vertices has at most 2 V - 4 faces and 6 V - 12 indices
+            // (twice its edges): more than 2 V faces or 6 V indices are too many, refused before
+            // they are read.
+            let counts = read_indices(counts, length_at_most(num_faces, 2 * v.len())?)?;
             if indices.is_null() {
                 return Err(Error::NullPointer);
             }
-            let ni = length(num_indices)?;
+            let ni = length_at_most(num_indices, 6 * v.len())?;
             let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
             if total != ni as u64 {
                 return Err(Error::InvalidArgument);
