@@ -10,8 +10,8 @@
 //! range, a tree whose leaves are the triangles in slot order (each node reached once from the
 //! root), depth within [`MAX_DEPTH`](super::MAX_DEPTH) (the queries' fixed stacks), finite
 //! coordinates within range, consistent counts, and every node's volumes containing the triangles
-//! below it to within a stated rounding (`validate.rs`), so that a loaded model answers right for
-//! the triangles it holds whatever the checksum said. Derived values (`scale`, `tiny`, each
+//! below it to within a stated rounding (`validate.rs`, O(n depth)), so that a loaded model
+//! answers right for the triangles it holds whatever the checksum said. Derived values (`scale`, `tiny`, each
 //! node's volume size) are not stored but recomputed, bit for bit as the build computed them.
 
 mod checksum;

@@ -4,7 +4,6 @@
 use super::Version;
 use super::codec::{HEADER, NODE, VERTEX, f64_at, u32_at};
 use super::tests::{assert_same, random_bvh, saved_in};
-use super::validate::{VOLUME_STEP, bound_inside};
 use crate::bvh::{Bvh, CollisionVolume, NodeKind, VolumeKind};
 use crate::error::Error;
 use crate::geometry::Tri;
@@ -219,60 +218,5 @@ fn children_swapped_are_refused() {
             },
             &format!("children of {i}"),
         );
-    }
-}
-
-/// How many volume and triangle tests the check of the volumes makes (printed with `--nocapture`: a figure, not a requirement).
-#[test]
-fn the_fallback_to_triangles_is_counted() {
-    let mut rng = Rng::new(41);
-    let sphere = |slices: usize, stacks: usize| -> Vec<(Tri, i32)> {
-        let at = |i: usize, j: usize| {
-            let (t, p) = (
-                std::f64::consts::PI * i as f64 / stacks as f64,
-                std::f64::consts::TAU * j as f64 / slices as f64,
-            );
-            Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
-        };
-        let mut out = Vec::new();
-        for i in 0..stacks {
-            for j in 0..slices {
-                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                out.push(([a, b, c], out.len() as i32));
-                out.push(([a, c, d], out.len() as i32));
-            }
-        }
-        out
-    };
-    for (shape, volume) in KINDS
-        .into_iter()
-        .map(|v| (0, v))
-        .chain(KINDS.into_iter().map(|v| (1, v)))
-    {
-        let n = 40_000;
-        let b = if shape == 0 {
-            random_bvh(&mut rng, n, volume, CollisionVolume::Obb)
-        } else {
-            Bvh::build(sphere(200, 100), volume, CollisionVolume::Obb).unwrap()
-        };
-        let tol = VOLUME_STEP * b.verts.iter().map(|p| p.abs().sum()).fold(0.0, f64::max);
-        let (mut tests, mut tris) = (0usize, 0usize);
-        for (i, node) in b.nodes.iter().enumerate() {
-            let (ps, pb) = (node.ssv(), b.boxes[i].obb(node));
-            let mut stack = node.children.to_vec();
-            while let Some(r) = stack.pop() {
-                match r.kind() {
-                    NodeKind::Leaf(_) => tris += 1,
-                    NodeKind::Inner(j) => {
-                        tests += 1;
-                        let child = &b.nodes[j];
-                        if !bound_inside(&ps, &pb, &child.ssv(), &b.boxes[j].obb(child), tol) {
-                            stack.extend(child.children);
-                        }
-                    }
-                }
-            }
-        }
-        eprintln!("{volume:?}, {n} triangles: {tests} volume tests, {tris} triangle tests");
     }
 }

@@ -12,7 +12,7 @@ use super::codec::{
     HEADER, MAGIC, NODE, TRAILER, VERTEX, collision_from, f64_at, read_node, section_sizes, u32_at,
     u64_at, volume_from,
 };
-use super::validate::{check_tree, check_volumes};
+use super::validate::{Spans, check_tree, check_volumes};
 use crate::error::{Error, MAX_COORDINATE};
 use crate::geometry::RESCALE_LO;
 use crate::math::Vec3;
@@ -168,9 +168,10 @@ impl Bvh {
         let inner_scale = found.iter().map(|f| f.inner_scale).fold(0.0, f64::max);
         let vertex_scale = found.iter().map(|f| f.vertex_scale).fold(0.0, f64::max);
         // The volumes, in runs of nodes checked on their own (on two threads for a large model).
+        let spans = Spans::new(&nodes, &faces)?;
         let runs: Vec<_> = (0..k).map(|i| bn(i)..bn(i + 1)).collect();
         let check = |_: &mut (), r: std::ops::Range<usize>| {
-            check_volumes(&nodes, &boxes, &verts, &faces, vertex_scale, r)
+            check_volumes(&nodes, &boxes, &verts, &faces, &spans, vertex_scale, r)
         };
         if k > 1 {
             run_tasks(2, runs, check, || Ok(()))?;

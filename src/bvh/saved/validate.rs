@@ -2,10 +2,11 @@
 //! the children make the tree a build makes ([`check_tree`]), and that every inner node's volumes
 //! contain the triangles below it ([`check_volumes`]), whatever the checksum said.
 
+use super::super::memory::with_room;
 use super::super::{MAX_DEPTH, Node, NodeBox, NodeKind, NodeRef};
-use crate::bounding_volume::{BoundingVolume, Obb, Ssv};
+use crate::bounding_volume::Ssv;
 use crate::error::Error;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 
 /// Checks that the inner nodes' `children` make the tree a build makes over `n` triangles (`n - 1`
 /// inner nodes):
@@ -65,127 +66,132 @@ pub(super) fn check_tree(children: &[[NodeRef; 2]], n: usize) -> Result<(), Erro
     }
 }
 
-/// How far, per level, [`check_volumes`] lets what a node bounds reach outside its volumes, as a
-/// fraction of the model's vertex scale `S` (the largest `|x| + |y| + |z|` of a vertex): 2^-45,
-/// about 3e-14, a few hundred times the rounding of the checks' own arithmetic. A build's volumes
-/// contain their triangles exactly as `contains` measures them, so a saved model always passes.
+/// How far outside an inner node's volumes [`check_volumes`] lets a vertex of a triangle below it
+/// lie, as a fraction of the model's vertex scale `S` (the largest `|x| + |y| + |z|` of a vertex):
+/// 2^-45, about 2.8e-14, some hundreds of times the rounding of the check's own arithmetic. A
+/// build's volumes contain their triangles exactly as `contains` measures them, so a saved model
+/// always passes.
 pub(crate) const VOLUME_STEP: f64 = 1.0 / (1u64 << 45) as f64;
 
+/// What [`check_volumes`] needs of the whole tree, made in O(n) by [`Spans::new`]: each inner
+/// node's run of triangle slots, and for each slot how many vertices the slots before it use
+/// (vertices are numbered in first use, so the vertices first used in a run of slots are a run of
+/// indices).
+pub(super) struct Spans {
+    /// `slots[i]`: the first and one past the last slot below inner node `i`.
+    slots: Vec<[u32; 2]>,
+    /// `seen[t]`: the vertices used by slots `0..t` (`0..=n`).
+    seen: Vec<u32>,
+}
+
+impl Spans {
+    /// For `nodes` (a tree [`check_tree`] accepted) and `faces` (numbered in first use, as the
+    /// reading checked). `Err(ModelOutOfMemory)` if the arrays cannot be allocated.
+    pub(super) fn new(nodes: &[Node], faces: &[[u32; 3]]) -> Result<Spans, Error> {
+        let mut seen = with_room(faces.len() + 1)?;
+        seen.push(0u32);
+        let mut last = 0u32;
+        for f in faces {
+            last = last.max(f[0].max(f[1]).max(f[2]) + 1);
+            seen.push(last);
+        }
+        // Children come after their parent: one backward pass has both children's runs.
+        let mut slots = with_room(nodes.len())?;
+        slots.resize(nodes.len(), [0u32; 2]);
+        for i in (0..nodes.len()).rev() {
+            let span = |c: NodeRef| match c.kind() {
+                NodeKind::Leaf(t) => [t as u32, t as u32 + 1],
+                NodeKind::Inner(j) => slots[j],
+            };
+            let [c0, c1] = nodes[i].children;
+            slots[i] = [span(c0)[0], span(c1)[1]];
+        }
+        Ok(Spans { slots, seen })
+    }
+}
+
 /// Checks that every vertex of every triangle below each inner node of `nodes` in `range` lies
-/// within the node's swept sphere volume and its box, up to `VOLUME_STEP * vertex_scale` per
-/// level below it (so within `MAX_DEPTH * VOLUME_STEP * vertex_scale`, about 2e-12 `S`, in all).
+/// within the node's swept sphere volume and its box, up to `VOLUME_STEP * vertex_scale`.
 ///
-/// `nodes` and `boxes` make a tree [`check_tree`] accepted; `faces` index `verts`. Each node is
-/// checked on its own (so ranges can be checked on several threads), by a descent of its subtree
-/// that stops at every node whose volumes show it inside the checked node's within one step
-/// ([`bound_inside`]) and checks the triangles of the leaves it reaches exactly; by induction from
-/// the leaves, what is below is then inside within one step per level. A child's volumes do not
-/// show it inside its parent's as a rule (a build fits each node to its triangles, not to its
-/// children's volumes: the child holding a triangle that touches a face of its parent's box sticks
-/// out of that face when their frames differ), so the descent goes on near the checked node's
-/// boundary only: a few times the subtree's boundary in all, O(n) over the tree for the shapes
-/// builds meet. A crafted buffer can make it visit every node below: `O(MAX_DEPTH n)` at worst.
+/// Each node is checked on its own (so ranges can be checked on several threads), against every
+/// vertex below it: the run of vertices first used below it, in order, and the earlier vertices
+/// its triangles share with triangles before them. A check of a node against its children's
+/// volumes would cost O(1) per node, but it fails on a build's hierarchies as a rule (a build fits
+/// each node to its triangles, not to its children's volumes: the child holding a triangle that
+/// touches a face of its parent's box sticks out of that face when their frames differ), and a
+/// descent that follows the children's volumes to the triangles near each node's boundary makes
+/// about 7 volume and 7 triangle tests per triangle, unpredictable branches and scattered reads,
+/// several times the cost of these plain passes. Each vertex is tested once per level above it:
+/// `O(depth n)`, at most `MAX_DEPTH n`, in sequential reads.
 pub(super) fn check_volumes(
     nodes: &[Node],
     boxes: &[NodeBox],
     verts: &[Vec3],
     faces: &[[u32; 3]],
+    spans: &Spans,
     vertex_scale: f64,
     range: std::ops::Range<usize>,
 ) -> Result<(), Error> {
     let tol = VOLUME_STEP * vertex_scale;
-    // One pending sibling per level below the node checked (`check_tree` bounded the depth).
-    let mut stack = [NodeRef::leaf(0); MAX_DEPTH + 2];
     for i in range {
-        let node = &nodes[i];
-        let (ssv, obb) = (node.ssv(), boxes[i].obb(node));
-        let [c0, c1] = node.children;
-        (stack[0], stack[1]) = (c1, c0);
-        let mut len = 2;
-        while len > 0 {
-            len -= 1;
-            let r = stack[len];
-            match r.kind() {
-                NodeKind::Leaf(t) => {
-                    let inside = faces[t].iter().all(|&k| {
-                        let p = &verts[k as usize];
-                        ssv.contains(p, tol) && obb.contains(p, tol)
-                    });
-                    if !inside {
-                        return Err(Error::InvalidData);
-                    }
-                }
-                NodeKind::Inner(j) => {
-                    let below = &nodes[j];
-                    if !bound_inside(&ssv, &obb, &below.ssv(), &boxes[j].obb(below), tol) {
-                        if len + 2 > stack.len() {
-                            return Err(Error::Internal);
-                        }
-                        let [d0, d1] = below.children;
-                        (stack[len], stack[len + 1]) = (d1, d0);
-                        len += 2;
-                    }
+        let checked = Checked::new(&nodes[i].ssv(), &boxes[i], tol);
+        let [t0, t1] = spans.slots[i].map(|t| t as usize);
+        let (v0, v1) = (spans.seen[t0], spans.seen[t1]);
+        let mut out = verts[v0 as usize..v1 as usize]
+            .iter()
+            .fold(false, |out, p| out | checked.outside(p));
+        for f in &faces[t0..t1] {
+            for &k in f {
+                if k < v0 {
+                    out |= checked.outside(&verts[k as usize]);
                 }
             }
+        }
+        if out {
+            return Err(Error::InvalidData);
         }
     }
     Ok(())
 }
 
-/// Whether what a child with volumes `cs` and `cb` holds is inside a node's volumes `ps` and `pb`
-/// (on one frame) within `tol`, as far as the child's volumes tell: for the box, along each of
-/// its six faces' normals, the nearer of the two volumes' extents; for the swept sphere volume,
-/// either every corner of the child's box or every corner of the child's swept sphere volume's
-/// core (padded with its radius) within its radius of the node's core (a point's distance from a
-/// rectangle is convex, so the corners bound every point between them). False may be wrong (the
-/// caller then checks the triangles); true is not, up to the rounding of these few operations on
-/// values of the model's magnitude, well below `tol`.
-pub(super) fn bound_inside(ps: &Ssv, pb: &Obb, cs: &Ssv, cb: &Obb, tol: f64) -> bool {
-    let a = &ps.axes;
-    // The child's frame and points in the node's frame.
-    let m = a.tr_mul(&cs.axes);
-    let (e0, e1) = (m.column(0) * cs.lengths[0], m.column(1) * cs.lengths[1]);
-    let core = [Vec3::zeros(), e0, e1, e0 + e1];
-    let ext = m.abs() * cb.half;
-    // The box: the child's box's extents and its core's padded by its radius, from the centre.
-    let (bc, sc) = (
-        a.tr_mul(&(cb.center - pb.center)),
-        a.tr_mul(&(cs.origin - pb.center)),
-    );
-    for k in 0..3 {
-        let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
-        for x in &core {
-            hi = hi.max(sc[k] + x[k]);
-            lo = lo.min(sc[k] + x[k]);
-        }
-        let hi = (hi + cs.radius).min(bc[k] + ext[k]);
-        let lo = (lo - cs.radius).max(bc[k] - ext[k]);
-        let limit = pb.half[k] + tol;
-        // NaN-free: every value is finite and bounded (`codec::read_node`).
-        if hi > limit || -lo > limit {
-            return false;
+/// A node's volumes as [`check_volumes`] tests points against them, within `tol`.
+pub(super) struct Checked {
+    /// The node's frame (columns).
+    axes: Mat3,
+    center: Vec3,
+    /// The box's half extents, plus `tol`.
+    limit: Vec3,
+    /// The swept sphere volume's origin in the frame, from the box's centre.
+    origin: Vec3,
+    lengths: [f64; 2],
+    /// `(radius + tol)^2`.
+    reach2: f64,
+}
+
+impl Checked {
+    pub(super) fn new(ssv: &Ssv, b: &NodeBox, tol: f64) -> Checked {
+        let reach = ssv.radius + tol;
+        Checked {
+            axes: ssv.axes,
+            center: b.center,
+            limit: b.half.add_scalar(tol),
+            origin: ssv.axes.tr_mul(&(ssv.origin - b.center)),
+            lengths: ssv.lengths,
+            reach2: reach * reach,
         }
     }
-    // The swept sphere volume: distances from the node's core, in its frame from its origin.
-    let [l0, l1] = ps.lengths;
-    let out = |x: f64, len: f64| (-x).max(x - len).max(0.0);
-    let far = |y: Vec3| {
-        let (dx, dy) = (out(y.x, l0), out(y.y, l1));
-        (dx * dx + dy * dy + y.z * y.z).sqrt()
-    };
-    let limit = ps.radius + tol;
-    let so = a.tr_mul(&(cs.origin - ps.origin));
-    if core.iter().all(|x| far(so + x) + cs.radius <= limit) {
-        return true;
+
+    /// Whether `p` lies outside the box or the swept sphere volume by more than `tol` (without
+    /// branches: the passes over the vertices stay straight).
+    #[inline(always)]
+    pub(super) fn outside(&self, p: &Vec3) -> bool {
+        let q = self.axes.tr_mul(&(p - self.center));
+        let boxed =
+            (q.x.abs() > self.limit.x) | (q.y.abs() > self.limit.y) | (q.z.abs() > self.limit.z);
+        let y = q - self.origin;
+        let out = |x: f64, len: f64| (-x).max(x - len).max(0.0);
+        let (dx, dy) = (out(y.x, self.lengths[0]), out(y.y, self.lengths[1]));
+        // NaN-free: every value is finite and bounded (`codec::read_node`, the vertices' checks).
+        boxed | (dx * dx + dy * dy + y.z * y.z > self.reach2)
     }
-    let bo = a.tr_mul(&(cb.center - ps.origin));
-    let h = [
-        m.column(0) * cb.half.x,
-        m.column(1) * cb.half.y,
-        m.column(2) * cb.half.z,
-    ];
-    (0..8).all(|s: usize| {
-        let sign = |b: usize| if s >> b & 1 == 1 { 1.0 } else { -1.0 };
-        far(bo + h[0] * sign(0) + h[1] * sign(1) + h[2] * sign(2)) <= limit
-    })
 }
