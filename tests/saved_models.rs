@@ -6,7 +6,7 @@
 //! (results reused, so the triangle cache and front tracking are exercised too), for every volume
 //! choice, on the shared models and random meshes; and it must answer as brute force does. Bad
 //! bytes must be refused with `InvalidData`: every truncation, every flipped byte, and, with the
-//! checksum recomputed here (an independent Fletcher-64, from its definition) so that the structural
+//! checksum recomputed here (an independent CRC-32C, from its definition) so that the structural
 //! checks are reached, bad indices, cycles, shared nodes, out-of-range and non-finite values, bad
 //! counts, a tree too deep. The layout offsets used are those of docs/saved-model-format.md.
 
@@ -64,24 +64,28 @@ fn build(mesh: &Mesh, volume: VolumeKind, collision: CollisionVolume) -> Model {
     m
 }
 
-/// Fletcher-64 from its definition: little-endian 32-bit words (the last padded with zeros), both
-/// sums modulo 2^32 - 1 at every step, `b << 32 | a`.
-fn fletcher64(bytes: &[u8]) -> u64 {
-    let m = 0xffff_ffffu64;
-    let (mut a, mut b) = (0u64, 0u64);
-    for w in bytes.chunks(4) {
-        let mut x = [0u8; 4];
-        x[..w.len()].copy_from_slice(w);
-        a = (a + u64::from(u32::from_le_bytes(x))) % m;
-        b = (b + a) % m;
+/// CRC-32C from its definition, a bit at a time: reflected, polynomial 0x82F63B78 (0x1EDC6F41
+/// reversed), initial value and final xor 0xffffffff.
+fn crc32c(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 {
+                (c >> 1) ^ 0x82f6_3b78
+            } else {
+                c >> 1
+            };
+        }
     }
-    (b << 32) | a
+    !c
 }
 
-/// `bytes` with its checksum recomputed (so that a change gets past it to the structural checks).
+/// `bytes` with its checksum (version 2: CRC-32C in the low half of the last 8 bytes) recomputed
+/// (so that a change gets past it to the structural checks).
 fn resealed(mut bytes: Vec<u8>) -> Vec<u8> {
     let body = bytes.len() - 8;
-    let sum = fletcher64(&bytes[..body]);
+    let sum = u64::from(crc32c(&bytes[..body]));
     bytes[body..].copy_from_slice(&sum.to_le_bytes());
     bytes
 }
@@ -462,7 +466,11 @@ fn structural_faults_are_caught_past_the_checksum() {
 
     let cases: Vec<(&str, Change<'_>)> = vec![
         ("magic", Box::new(|b| b[0] = b'X')),
-        ("version 2", Box::new(|b| put_u32(b, 8, 2))),
+        ("version 3", Box::new(|b| put_u32(b, 8, 3))),
+        (
+            "version 1 (its checksum is another)",
+            Box::new(|b| put_u32(b, 8, 1)),
+        ),
         ("version 0", Box::new(|b| put_u32(b, 8, 0))),
         ("volume kind 4", Box::new(|b| put_u32(b, 12, 4))),
         ("collision volume 2", Box::new(|b| put_u32(b, 16, 2))),
@@ -650,12 +658,16 @@ fn volume_kinds_constrain_the_stored_lengths() {
 }
 
 /// A saved model of `n` triangles whose tree is rewired as a caterpillar (node i: leaf i and node
-/// i + 1; the last node two leaves): leaves in slot order, depth `n`.
-fn caterpillar(n: usize) -> Vec<u8> {
+/// i + 1; the last node two leaves): leaves in slot order, depth `n`. With `fitted`, every node
+/// has the root's volumes (which contain every triangle), so that the volumes are valid too.
+fn caterpillar(n: usize, fitted: bool) -> Vec<u8> {
     let mut rng = Rng::new(27);
     let m = Mesh::soup(&mut rng, n, 1.0, 0.5).model();
     let mut b = m.to_bytes().unwrap();
     for i in 0..n - 1 {
+        if fitted {
+            b.copy_within(HEADER..HEADER + 144, HEADER + i * NODE);
+        }
         let at = HEADER + i * NODE + 144;
         let leaf = |t: usize| (-(t as i32) - 1) as u32;
         put_u32(&mut b, at, leaf(i));
@@ -672,17 +684,21 @@ fn caterpillar(n: usize) -> Vec<u8> {
 #[test]
 fn depth_is_bounded_and_a_tree_at_the_bound_is_queried_safely() {
     // pqp's hierarchies are at most 73 deep (the queries' fixed stacks are sized for it).
+    for fitted in [false, true] {
+        for n in [74, 500] {
+            assert_eq!(
+                Model::from_bytes(&caterpillar(n, fitted)).err(),
+                Some(Error::InvalidData)
+            );
+        }
+    }
+    // The build's volumes on the rewired tree do not contain the triangles below them.
     assert_eq!(
-        Model::from_bytes(&caterpillar(74)).err(),
+        Model::from_bytes(&caterpillar(73, false)).err(),
         Some(Error::InvalidData)
     );
-    assert_eq!(
-        Model::from_bytes(&caterpillar(500)).err(),
-        Some(Error::InvalidData)
-    );
-    let deep = Model::from_bytes(&caterpillar(73)).unwrap();
-    // Its volumes do not fit its leaves (the answers need not be right), but every query runs
-    // and ends, against itself and against a normal model.
+    let deep = Model::from_bytes(&caterpillar(73, true)).unwrap();
+    // Every query runs and ends on it, against itself and against a normal model.
     let mut rng = Rng::new(28);
     let other = Mesh::soup(&mut rng, 50, 1.0, 0.5).model();
     let ps = poses(&mut rng, 12, 1.0);

@@ -14,10 +14,11 @@
 //! - [`convex`]: convex models from points and from triangles (valid and broken meshes), then
 //!   distance, intersect and penetration, checked against each other and against the triangle-mesh
 //!   queries on the hulls' faces.
-//! - [`deserialize`]: bytes given to `pqp_model_deserialize` (as they are, or with their checksum
-//!   recomputed so that the structural checks are reached), into a fresh and into a built model:
-//!   refused with `PQP_ERR_INVALID_DATA` and the model unchanged, or loaded as a model that saves
-//!   to exactly those bytes and that every query and view runs on.
+//! - [`deserialize`]: bytes given to `pqp_model_deserialize` (as they are, or with their checksum,
+//!   of either version, recomputed so that the checks of the contents are reached), into a fresh
+//!   and into a built model: refused with `PQP_ERR_INVALID_DATA` and the model unchanged, or loaded
+//!   as a model that saves to exactly those bytes (version 1 ones as version 2) and that every
+//!   query and view runs on.
 //! - [`more_queries`]: what PQP 1.3 lacks, on two small models whose triangles share vertices:
 //!   closest point and signed distance (against a brute-force minimum and winding number), rays
 //!   and their batch form (against crossings well inside a triangle), pairs within a distance,
@@ -1192,7 +1193,8 @@ pub fn convex(data: &[u8]) {
 // ---------------------------------------------------------------------------------------------
 // Saved models.
 
-/// Fletcher-64 of the saved-model layout (docs/saved-model-format.md), from its definition.
+/// Fletcher-64 of the saved-model layout (docs/saved-model-format.md, version 1), from its
+/// definition.
 fn fletcher64(bytes: &[u8]) -> u64 {
     let m = 0xffff_ffffu64;
     let (mut a, mut b) = (0u64, 0u64);
@@ -1203,6 +1205,29 @@ fn fletcher64(bytes: &[u8]) -> u64 {
         b = (b + a) % m;
     }
     (b << 32) | a
+}
+
+/// CRC-32C of the saved-model layout (version 2), from its definition, a bit at a time.
+fn crc32c(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 {
+                (c >> 1) ^ 0x82f6_3b78
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// The version word of saved bytes (0 if too short).
+fn version_of(bytes: &[u8]) -> u32 {
+    bytes
+        .get(8..12)
+        .map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]))
 }
 
 /// A model's saved bytes (it must be built).
@@ -1225,7 +1250,8 @@ unsafe fn saved_bytes(m: *const pqp_model) -> Vec<u8> {
 }
 
 /// Bytes as a saved model. The first byte chooses: bit 0, recompute the checksum (the last 8
-/// bytes) so that the structural checks are reached; the rest are the bytes.
+/// bytes: Fletcher-64 if the version word is 1, else CRC-32C) so that the checks of the contents
+/// are reached; the rest are the bytes.
 pub fn deserialize(data: &[u8]) {
     let Some((&mode, rest)) = data.split_first() else {
         return;
@@ -1233,7 +1259,11 @@ pub fn deserialize(data: &[u8]) {
     let mut bytes = rest.to_vec();
     if mode & 1 == 1 && bytes.len() >= 8 {
         let body = bytes.len() - 8;
-        let sum = fletcher64(&bytes[..body]);
+        let sum = if version_of(&bytes) == 1 {
+            fletcher64(&bytes[..body])
+        } else {
+            u64::from(crc32c(&bytes[..body]))
+        };
         bytes[body..].copy_from_slice(&sum.to_le_bytes());
     }
     unsafe {
@@ -1267,13 +1297,21 @@ pub fn deserialize(data: &[u8]) {
                 "a failed load changed the model"
             );
         } else {
-            // Loaded: exactly what it saves, and every query and view runs on it.
+            // Loaded: exactly what it saves (version 2; a version 1 buffer but for its version
+            // word and checksum), and every query and view runs on it.
+            let mut want = bytes.clone();
+            if version_of(&bytes) == 1 {
+                want[8..12].copy_from_slice(&2u32.to_le_bytes());
+                let body = want.len() - 8;
+                let sum = u64::from(crc32c(&want[..body]));
+                want[body..].copy_from_slice(&sum.to_le_bytes());
+            }
             assert!(
-                saved_bytes(fresh) == bytes,
+                saved_bytes(fresh) == want,
                 "a loaded model saves other bytes"
             );
             assert!(
-                saved_bytes(other) == bytes,
+                saved_bytes(other) == want,
                 "a loaded model saves other bytes"
             );
             let n = pqp_model_num_tris(fresh);

@@ -21,8 +21,8 @@
 //! thread count.
 
 use super::build_threads::{GRAIN, Pool, run_tasks};
+use super::memory::populate_pages;
 use super::principal_axes::{axes_of, weighted_scatter};
-use super::saved::populate_pages;
 use super::{Bvh, CollisionVolume, Node, NodeBox, NodeRef, NodeSlots, Scans, VolumeKind};
 use crate::bounding_volume::{Obb, Ssv, SsvKind};
 use crate::error::Error;
@@ -354,7 +354,7 @@ fn build_listed<'a>(
 }
 
 /// An empty vector with room for `n`, or `Err(ModelOutOfMemory)`. Unlike a load's arrays
-/// (`saved.rs`), the build's are not offered huge pages: with the kernel's default `defrag`
+/// (`saved/`), the build's are not offered huge pages: with the kernel's default `defrag`
 /// setting a huge-page fault may compact memory synchronously, and in measurements the
 /// single-thread 1M build became 1.2-1.3x slower and erratic with them.
 fn with_room<T>(n: usize) -> Result<Vec<T>, Error> {

@@ -18,6 +18,7 @@ mod boundary;
 mod build;
 mod build_threads;
 mod far_field;
+mod memory;
 mod point_bounds;
 mod pqp_view;
 mod principal_axes;

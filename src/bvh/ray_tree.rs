@@ -24,7 +24,7 @@
 //! in memory, one read with no indirection, rather than a face read through the order and its
 //! vertices read through the face (on a model larger than the caches, three dependent misses).
 
-use super::saved::advise_huge_pages;
+use super::memory::advise_huge_pages;
 use super::{Bvh, MAX_DEPTH, TriangleBounds};
 use crate::error::Error;
 use crate::geometry::predicates::max_abs;

@@ -56,15 +56,18 @@ impl Model {
     /// [`to_bytes`](Model::to_bytes)) saved, on this machine or any other: it answers every query
     /// exactly as the saved one did, with the same counts of bound and triangle tests, and has its
     /// volume choices. Nothing is rebuilt: the arrays are copied and checked, in time linear in
-    /// the size (many times faster than [`end`](Model::end)).
+    /// the size, and the volumes checked against the vertices below them, in time `O(n log n)`
+    /// (several times faster than [`end`](Model::end)).
     ///
     /// `Err(InvalidData)` if `bytes` are not a saved model: another format or version, truncated,
     /// corrupted (the checksum), or contents that do not make a valid model (indices out of range,
     /// a hierarchy that is not a tree over the triangles, non-finite or out-of-range coordinates,
-    /// inconsistent counts); every index and the tree's shape are checked, so no input makes a
-    /// model a query could misuse. What is not checked is that each bounding volume encloses its
-    /// triangles (that would cost a build): bytes crafted with wrong volumes and a matching
-    /// checksum give a model whose queries are safe and end, but may answer wrongly.
+    /// inconsistent counts, a bounding volume that does not contain the triangles below it); every
+    /// index, the tree's shape and every volume are checked, whatever the checksum says, so that
+    /// an accepted buffer gives a model that answers right for the triangles it holds (each
+    /// volume contains them to within `2^-45 * S`, `S` the largest `|x| + |y| + |z|` of a
+    /// vertex). Reads every version of the format (docs/saved-model-format.md); writes the
+    /// newest.
     /// `Err(ModelOutOfMemory)` if the model could not be allocated (allocations are bounded by
     /// the length of `bytes`).
     pub fn from_bytes(bytes: &[u8]) -> Result<Model, Error> {
