@@ -852,3 +852,36 @@ fn calls_decided_at_the_root_answer_as_the_whole_search() {
         }
     }
 }
+
+/// An approximate distance with a new result starts from a probe's pair (one descent to a pair
+/// of leaves), so its error bound prunes from the start: on poses from near to far, it does a
+/// small fraction of the exact query's bound tests, and its answer depends on the pose alone
+/// (the same bits from a new result, whatever was asked before).
+#[test]
+fn approximate_distance_stops_early_from_a_new_result() {
+    let mut rng = Rng::new(77);
+    let a = Mesh::torus(1.0, 0.3, 40, 20);
+    let b = Mesh::sphere(0.7, 24, 16);
+    let (ma, mb) = (a.model(), b.model());
+    let (mut exact_tests, mut approx_tests) = (0, 0);
+    let opts = DistanceOptions::approximate(0.1, f64::INFINITY);
+    for _ in 0..40 {
+        let pa = Pose::new(rng.rotation(), [0.0; 3]);
+        let d = rng.direction();
+        let s = rng.range(1.5, 6.0);
+        let pb = Pose::new(rng.rotation(), d.map(|x| x * s));
+        let exact = distance(&ma, &pa, &mb, &pb, &DistanceOptions::exact()).unwrap();
+        let approx = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+        assert!(approx.distance >= exact.distance - 1e-12);
+        assert!(approx.distance <= exact.distance * 1.1 + 1e-12);
+        let again = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+        assert_eq!(again.distance.to_bits(), approx.distance.to_bits());
+        assert_eq!(again.stats.bv_tests, approx.stats.bv_tests);
+        exact_tests += exact.stats.bv_tests;
+        approx_tests += approx.stats.bv_tests;
+    }
+    assert!(
+        approx_tests * 4 < exact_tests,
+        "{approx_tests} vs {exact_tests}"
+    );
+}
