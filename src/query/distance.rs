@@ -196,9 +196,11 @@ pub fn distance_into(
     // its error bound prunes from the start (see `ClosestSearch::probe`): it then stops as early
     // as a depth-first search would. An exact query gains little from it (its priority-directed
     // search expands nearly only what any search must), so it goes without.
-    if fresh && abs_err > 0.0 && rel_err > 0.0 {
-        search.probe();
-    }
+    let root = if fresh && abs_err > 0.0 && rel_err > 0.0 {
+        search.probe()
+    } else {
+        None
+    };
     let front = result.front.start(&asked);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
@@ -222,7 +224,7 @@ pub fn distance_into(
         |d| d <= 0.0,
         false,
         front,
-        None,
+        root,
     );
     let new_front = search.take_front();
     result.front.finish(m1, m2, rel, new_front, from_front);

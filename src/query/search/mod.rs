@@ -126,8 +126,9 @@ impl<'a> ClosestSearch<'a> {
     /// other strategies start from the root. A front node's bound held before the `motion`; less
     /// the motion of the node's points, it bounds the triangles below it now.
     ///
-    /// `root`: the root pair as [`root_pair`] gives it with the cutoff of the search's first
-    /// answer, if the caller has it already (it is counted here as a bound test all the same).
+    /// `root`: the root pair, if the caller has it already: with its exact bound, or as
+    /// [`root_pair`] gives it with the cutoff of the search's first answer (either prunes alike;
+    /// it is counted here as a bound test all the same).
     #[allow(clippy::too_many_arguments)]
     pub fn run(
         &mut self,
@@ -169,27 +170,35 @@ impl<'a> ClosestSearch<'a> {
 
     /// Finds a first answer for a search that has none: descends from the root pair to one pair
     /// of leaves, the child pair with the smaller bound first at every level, and tests its
-    /// triangles (one bound test for the root, two for each level below). An approximate
-    /// distance query prunes with its answer from the start, as a depth-first search would after
-    /// its first descent, where a priority-directed search from the root reaches its first leaf
-    /// pair only after expanding every node with a smaller bound. Only before [`run`] and
-    /// without a front recorded (the probe's nodes would not form one).
+    /// triangles (two bound tests a level). An approximate distance query prunes with its answer
+    /// from the start, as a depth-first search would after its first descent, where a
+    /// priority-directed search from the root reaches its first leaf pair only after expanding
+    /// every node with a smaller bound. Where the root volumes overlap (bound 0: the models touch
+    /// or nearly), the descent is not taken: there many pairs share the bound 0, the one it
+    /// reaches is seldom the answer, and the search finds a closest pair as soon without it.
+    ///
+    /// Returns the root pair with its exact bound, for [`run`] to start from (it counts it), or
+    /// `None` with a front recorded (the descent's nodes would not form one; nothing is done).
     ///
     /// [`run`]: ClosestSearch::run
-    pub fn probe(&mut self) {
+    pub fn probe(&mut self) -> Option<NodePair> {
         if self.front.is_some() {
-            return;
+            return None;
+        }
+        let root = root_pair(self.b1, self.b2, &self.rel, f64::INFINITY);
+        if root.bound <= 0.0 {
+            return Some(root);
         }
         avx2_or_portable(
             #[inline(always)]
             move || {
-                self.stats.bv_tests += 1;
-                let mut p = root_pair(self.b1, self.b2, &self.rel, f64::INFINITY);
+                let mut p = root;
                 while let Some([(near, _), _]) = self.visit(&p, f64::INFINITY, true) {
                     p = near;
                 }
             },
-        )
+        );
+        Some(root)
     }
 
     /// Asks the search to prefetch one level further ahead (on models large enough to prefetch at
