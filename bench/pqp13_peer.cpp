@@ -83,3 +83,41 @@ int tolerance(Results* r, const double* R1, const double* T1, Model* m1, const d
 int memory_usage(Model* m) { return m->m.MemUsage(0); }
 
 }  // namespace pqp13
+
+namespace pqp13 {
+
+double distance_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                      const double* T2, Model* m2, double rel_err, double abs_err) {
+    Pose13 a(R1, T1), b(R2, T2);
+    PQP_DistanceResult dres;
+    PQP_Distance(&dres, a.R, a.T, &m1->m, b.R, b.T, &m2->m, rel_err, abs_err);
+    return dres.Distance();
+}
+
+int collide_first_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                        const double* T2, Model* m2) {
+    Pose13 a(R1, T1), b(R2, T2);
+    PQP_CollideResult cres;
+    PQP_Collide(&cres, a.R, a.T, &m1->m, b.R, b.T, &m2->m, PQP_FIRST_CONTACT);
+    return cres.Colliding();
+}
+
+int tolerance_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                    const double* T2, Model* m2, double tol) {
+    Pose13 a(R1, T1), b(R2, T2);
+    PQP_ToleranceResult tres;
+    PQP_Tolerance(&tres, a.R, a.T, &m1->m, b.R, b.T, &m2->m, tol);
+    return tres.CloserThanTolerance();
+}
+
+}  // namespace pqp13
+
+namespace pqp13 {
+int distance_bv_tests(const double* R1, const double* T1, Model* m1, const double* R2,
+                      const double* T2, Model* m2, double rel_err, double abs_err) {
+    Pose13 a(R1, T1), b(R2, T2);
+    PQP_DistanceResult dres;
+    PQP_Distance(&dres, a.R, a.T, &m1->m, b.R, b.T, &m2->m, rel_err, abs_err);
+    return dres.NumBVTests();
+}
+}  // namespace pqp13

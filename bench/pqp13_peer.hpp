@@ -40,3 +40,22 @@ int tolerance(Results* r, const double* R1, const double* T1, Model* m1, const d
 int memory_usage(Model* m);
 
 }  // namespace pqp13
+
+namespace pqp13 {
+
+// As legacy programs call PQP 1.3: the result object declared inside the call (a fresh one each
+// time; PQP 1.3 keeps its last closest pair in the models, so it still starts warm).
+double distance_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                      const double* T2, Model* m2, double rel_err, double abs_err);
+int collide_first_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                        const double* T2, Model* m2);
+int tolerance_fresh(const double* R1, const double* T1, Model* m1, const double* R2,
+                    const double* T2, Model* m2, double tol);
+
+}  // namespace pqp13
+
+namespace pqp13 {
+// The bound tests of a distance query with a fresh result (PQP 1.3's num_bv_tests).
+int distance_bv_tests(const double* R1, const double* T1, Model* m1, const double* R2,
+                      const double* T2, Model* m2, double rel_err, double abs_err);
+}  // namespace pqp13

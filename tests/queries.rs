@@ -804,3 +804,85 @@ fn tiny_triangle_beside_huge_coordinates() {
         );
     }
 }
+
+/// Poses far apart end at the root pair (one bound test): collision (every mode) finds nothing
+/// and tolerance answers "farther", with a lower bound on the distance, with a fresh result and
+/// with one reused (which starts from its cached pair); near poses go on past the root as before,
+/// with the answers of brute force.
+#[test]
+fn calls_decided_at_the_root_answer_as_the_whole_search() {
+    let mut rng = Rng::new(42);
+    let a = Mesh::torus(1.0, 0.3, 24, 12);
+    let b = Mesh::sphere(0.6, 16, 10);
+    let (ma, mb) = (a.model(), b.model());
+    let mut reused = pqp::ToleranceResult::new();
+    for k in 0..60 {
+        let pa = Pose::new(rng.rotation(), rng.point(0.3));
+        let d = rng.direction();
+        // Far (beyond any root volume) or near (through the root test).
+        let s = if k % 2 == 0 {
+            rng.range(8.0, 20.0)
+        } else {
+            rng.range(0.5, 2.0)
+        };
+        let pb = Pose::new(rng.rotation(), d.map(|x| x * s));
+        let truth = brute(&a, &pa, &b, &pb).distance;
+        let t = rng.range(0.001, 0.3);
+        if (truth - t).abs() < 1e-9 {
+            continue;
+        }
+        for mode in [ContactMode::First, ContactMode::All] {
+            let c = collide(&ma, &pa, &mb, &pb, mode).unwrap();
+            assert_eq!(c.pairs().is_empty(), truth > 0.0);
+            if k % 2 == 0 {
+                assert_eq!((c.stats.bv_tests, c.stats.tri_tests), (1, 0));
+            }
+        }
+        let fresh = tolerance(&ma, &pa, &mb, &pb, t, &Search::default()).unwrap();
+        pqp::tolerance_into(&mut reused, &ma, &pa, &mb, &pb, t, &Search::default()).unwrap();
+        for r in [&fresh, &reused] {
+            assert_eq!(r.closer_than_tolerance, truth <= t);
+            if !r.closer_than_tolerance {
+                assert!(r.distance > t && r.distance <= truth + 1e-12);
+                assert_eq!((r.id1, r.id2), (-1, -1));
+            }
+        }
+        if k % 2 == 0 {
+            assert_eq!((fresh.stats.bv_tests, fresh.stats.tri_tests), (1, 0));
+        }
+    }
+}
+
+/// An approximate distance with a new result starts from a probe's pair (one descent to a pair
+/// of leaves), so its error bound prunes from the start: on poses from overlapping to far, it
+/// never does more bound tests than the exact query and in all a small fraction of them, and its
+/// answer depends on the pose alone (the same bits from a new result, whatever was asked before).
+#[test]
+fn approximate_distance_stops_early_from_a_new_result() {
+    let mut rng = Rng::new(77);
+    let a = Mesh::torus(1.0, 0.3, 40, 20);
+    let b = Mesh::sphere(0.7, 24, 16);
+    let (ma, mb) = (a.model(), b.model());
+    let (mut exact_tests, mut approx_tests) = (0, 0);
+    let opts = DistanceOptions::approximate(0.1, f64::INFINITY);
+    for _ in 0..40 {
+        let pa = Pose::new(rng.rotation(), [0.0; 3]);
+        let d = rng.direction();
+        let s = rng.range(0.5, 6.0);
+        let pb = Pose::new(rng.rotation(), d.map(|x| x * s));
+        let exact = distance(&ma, &pa, &mb, &pb, &DistanceOptions::exact()).unwrap();
+        let approx = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+        assert!(approx.distance >= exact.distance - 1e-12);
+        assert!(approx.distance <= exact.distance * 1.1 + 1e-12);
+        let again = distance(&ma, &pa, &mb, &pb, &opts).unwrap();
+        assert_eq!(again.distance.to_bits(), approx.distance.to_bits());
+        assert_eq!(again.stats.bv_tests, approx.stats.bv_tests);
+        assert!(approx.stats.bv_tests <= exact.stats.bv_tests, "{s}");
+        exact_tests += exact.stats.bv_tests;
+        approx_tests += approx.stats.bv_tests;
+    }
+    assert!(
+        approx_tests * 4 < exact_tests,
+        "{approx_tests} vs {exact_tests}"
+    );
+}

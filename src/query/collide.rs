@@ -171,9 +171,32 @@ fn search<V: OverlapVolume, const FIRST: bool>(
     mut leaf_pair: impl FnMut(usize, usize, &Tri) -> Option<ContactPair>,
     volume: impl Fn(&Bvh, NodeRef) -> V,
 ) -> Stats {
+    // The root pair first, before the search's tables are set up: a planner's free-space checks
+    // mostly end there, and the tables (a kilobyte of keys to clear) would cost as much as the
+    // test. Its volumes go into the tables if the search goes on (it tests the pair again, from
+    // them, as its first node).
+    let (root_a, root_b) = (b1.root(), b2.root());
+    let roots = if root_a.is_leaf() || root_b.is_leaf() {
+        None
+    } else {
+        let va = volume(b1, root_a);
+        let vb = volume(b2, root_b);
+        let posed = V::pose(&vb, rel);
+        if !V::overlap_posed(&va, &posed, rel) {
+            return Stats {
+                bv_tests: 1,
+                ..Stats::default()
+            };
+        }
+        Some(((va, va.size()), (posed, vb.size())))
+    };
     let mut stats = Stats::default();
     let mut stack = PairStack::new();
     let (mut nodes1, mut posed2) = (NodeCache::new(), NodeCache::new());
+    if let Some((a, b)) = roots {
+        nodes1.get(root_a, || a);
+        posed2.get(root_b, || b);
+    }
     // Model 1's triangles posed in model 2's frame, and model 2's in model 1's.
     let (mut tris1, mut tris2) = (NodeCache::<Tri>::new(), NodeCache::<Tri>::new());
     let to_1 = |t: Tri| t.map(|p| rel.apply(&p));

@@ -176,6 +176,7 @@ pub fn distance_into(
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, &options.search);
     let mut leaves = MaybeUninit::uninit();
     let leaves = LeafVolumes::init(&mut leaves);
+    let fresh = start_pair.is_none();
     let mut search = ClosestSearch::new(b1, b2, rel, start_pair, leaves);
     let asked = FrontQuery {
         m1,
@@ -192,6 +193,15 @@ pub fn distance_into(
     // it bounds: prefetching for them before their bounds pays there, and costs an exact query,
     // which prunes many.
     search.prefetch_ahead(rel_err > 0.0 && abs_err > 0.0);
+    // An approximate query without a first answer (a new result) finds one by a probe, so that
+    // its error bound prunes from the start (see `ClosestSearch::probe`): it then stops as early
+    // as a depth-first search would. An exact query gains little from it (its priority-directed
+    // search expands nearly only what any search must), so it goes without.
+    let root = if fresh && abs_err > 0.0 && rel_err > 0.0 {
+        search.probe()
+    } else {
+        None
+    };
     let front = result.front.start(&asked);
     let from_front = front.is_some();
     // A pair with lower bound b is pruned only when both error bounds allow it: b (1 + rel_err) >= d
@@ -215,6 +225,7 @@ pub fn distance_into(
         |d| d <= 0.0,
         false,
         front,
+        root,
     );
     let new_front = search.take_front();
     result.front.finish(m1, m2, rel, new_front, from_front);

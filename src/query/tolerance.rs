@@ -1,7 +1,7 @@
 //! Tolerance: are two posed models within distance `t` of each other?
 
 use super::primitive::{Goal, Nearest};
-use super::search::{ClosestSearch, LeafVolumes, Search, Strategy};
+use super::search::{ClosestSearch, LeafVolumes, Search, Strategy, root_pair};
 use super::{Stats, TriCache, prepare};
 use crate::error::Error;
 use crate::math::{Pose, Vec3};
@@ -133,10 +133,6 @@ pub fn tolerance_into(
     }
     let (b1, b2, rel) = prepare(m1, pose1, m2, pose2)?;
     let start_pair = TriCache::start_pair(&result.cache, m1, m2, search);
-    let options = search;
-    let mut leaves = MaybeUninit::uninit();
-    let leaves = LeafVolumes::init(&mut leaves);
-    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, leaves);
     // -0 is 0 (its bits would make the cutoff below negative). An infinite tolerance takes in
     // every pair: the search still goes down to one triangle pair, whose distance it reports.
     let limit = if tolerance == 0.0 {
@@ -147,6 +143,33 @@ pub fn tolerance_into(
     // Nothing farther than the tolerance matters, nor anything that cannot beat the best pair:
     // the cutoff is the least bound above the tolerance, or the best distance if smaller.
     let above = f64::from_bits(limit.to_bits() + 1);
+    // Without a cached pair the search starts at the root pair, with the cutoff `above`: bound it
+    // first, before the search is set up (its caches cost as much as this test). Beyond the
+    // tolerance, it is the answer the search would give: the root pruned, nothing tested.
+    let root = match start_pair {
+        Some(_) => None,
+        None => {
+            let root = root_pair(b1, b2, &rel, above);
+            if root.bound >= above {
+                result.closer_than_tolerance = false;
+                result.distance = root.bound;
+                result.tolerance = tolerance;
+                (result.p1, result.p2) = (Vec3::zeros(), Vec3::zeros());
+                ((result.id1, result.id2), (result.tri1, result.tri2)) = ((-1, -1), (-1, -1));
+                result.stats = Stats {
+                    bv_tests: 1,
+                    tri_tests: 0,
+                    query_time_secs: start.elapsed().as_secs_f64(),
+                };
+                return Ok(());
+            }
+            Some(root)
+        }
+    };
+    let options = search;
+    let mut leaves = MaybeUninit::uninit();
+    let leaves = LeafVolumes::init(&mut leaves);
+    let mut search = ClosestSearch::new(b1, b2, rel, start_pair, leaves);
     search.run(
         options,
         Strategy::DepthFirst,
@@ -155,6 +178,7 @@ pub fn tolerance_into(
         // The cutoff falls only with a pair within the tolerance, which stops the search.
         true,
         None,
+        root,
     );
     let best = search.best;
     result.stats = search.stats;

@@ -125,6 +125,11 @@ impl<'a> ClosestSearch<'a> {
     /// pair lies below one of them) instead of the root, when the search is priority-directed;
     /// other strategies start from the root. A front node's bound held before the `motion`; less
     /// the motion of the node's points, it bounds the triangles below it now.
+    ///
+    /// `root`: the root pair, if the caller has it already: with its exact bound, or as
+    /// [`root_pair`] gives it with the cutoff of the search's first answer (either prunes alike;
+    /// it is counted here as a bound test all the same).
+    #[allow(clippy::too_many_arguments)]
     pub fn run(
         &mut self,
         search: &Search,
@@ -133,6 +138,7 @@ impl<'a> ClosestSearch<'a> {
         stop: impl Fn(f64) -> bool + Copy,
         fixed_cutoff: bool,
         front: Option<(&[FrontPair], Motion)>,
+        root: Option<NodePair>,
     ) {
         // The search loops and the visits are inlined here, and this into the copy compiled for
         // AVX2 (or the portable one); the bounds' kernel is called: it has copies of its own.
@@ -147,7 +153,8 @@ impl<'a> ClosestSearch<'a> {
                     return self.priority(None, front, Some(motion), search.qsize, cutoff, stop);
                 }
                 self.stats.bv_tests += 1;
-                let root = root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d));
+                let root = root
+                    .unwrap_or_else(|| root_pair(self.b1, self.b2, &self.rel, cutoff(self.best.d)));
                 match strategy {
                     Strategy::Auto | Strategy::DepthFirst => {
                         self.depth_first(root, cutoff, stop, fixed_cutoff);
@@ -159,6 +166,39 @@ impl<'a> ClosestSearch<'a> {
                 }
             },
         )
+    }
+
+    /// Finds a first answer for a search that has none: descends from the root pair to one pair
+    /// of leaves, the child pair with the smaller bound first at every level, and tests its
+    /// triangles (two bound tests a level). An approximate distance query prunes with its answer
+    /// from the start, as a depth-first search would after its first descent, where a
+    /// priority-directed search from the root reaches its first leaf pair only after expanding
+    /// every node with a smaller bound. Where the root volumes overlap (bound 0: the models touch
+    /// or nearly), the descent is not taken: there many pairs share the bound 0, the one it
+    /// reaches is seldom the answer, and the search finds a closest pair as soon without it.
+    ///
+    /// Returns the root pair with its exact bound, for [`run`] to start from (it counts it), or
+    /// `None` with a front recorded (the descent's nodes would not form one; nothing is done).
+    ///
+    /// [`run`]: ClosestSearch::run
+    pub fn probe(&mut self) -> Option<NodePair> {
+        if self.front.is_some() {
+            return None;
+        }
+        let root = root_pair(self.b1, self.b2, &self.rel, f64::INFINITY);
+        if root.bound <= 0.0 {
+            return Some(root);
+        }
+        avx2_or_portable(
+            #[inline(always)]
+            move || {
+                let mut p = root;
+                while let Some([(near, _), _]) = self.visit(&p, f64::INFINITY, true) {
+                    p = near;
+                }
+            },
+        );
+        Some(root)
     }
 
     /// Asks the search to prefetch one level further ahead (on models large enough to prefetch at
