@@ -24,8 +24,6 @@ fn pqp_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(queries::ray_cast, m)?)?;
     m.add_function(wrap_pyfunction!(queries::collide_batch, m)?)?;
     m.add_function(wrap_pyfunction!(queries::distance_batch, m)?)?;
-    m.add_function(wrap_pyfunction!(model::_restore_mesh, m)?)?;
-    m.add_function(wrap_pyfunction!(model::_restore_primitive, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -228,7 +228,13 @@ impl PyModel {
                 self.vertices.len(),
                 self.faces.len()
             ),
-            Some(p) => format!("pqp.Model({p:?})"),
+            Some(Primitive::Sphere { radius }) => format!("pqp.Model.sphere({radius:?})"),
+            Some(Primitive::Capsule { radius, length }) => {
+                format!("pqp.Model.capsule({radius:?}, {length:?})")
+            }
+            Some(Primitive::Box { size: [x, y, z] }) => {
+                format!("pqp.Model.box({x:?}, {y:?}, {z:?})")
+            }
         }
     }
 
@@ -236,7 +242,6 @@ impl PyModel {
     /// its sizes.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
-        let module = py.import("pqp")?;
         let this = slf.borrow();
         match this.inner.primitive() {
             Some(p) => {
@@ -245,7 +250,7 @@ impl PyModel {
                     Primitive::Capsule { radius, length } => ("capsule", [radius, length, 0.0]),
                     Primitive::Box { size } => ("box", size),
                 };
-                let f = module.getattr("_restore_primitive")?;
+                let f = slf.getattr("_from_primitive")?;
                 PyTuple::new(
                     py,
                     [
@@ -256,10 +261,48 @@ impl PyModel {
             }
             None => {
                 let saved = this.inner.to_bytes().map_err(|e| lib_err("pickle", e))?;
-                let f = module.getattr("_restore_mesh")?;
+                let f = slf.getattr("_from_saved")?;
                 let args = (PyBytes::new(py, &saved), this.vertices(py), this.faces(py));
                 PyTuple::new(py, [f.into_any(), args.into_pyobject(py)?.into_any()])
             }
+        }
+    }
+
+    /// Unpickles a mesh model: its saved bytes (checked, not rebuilt) and its vertices and faces.
+    #[staticmethod]
+    fn _from_saved(
+        py: Python<'_>,
+        saved: &[u8],
+        vertices: &Bound<'_, PyAny>,
+        faces_obj: &Bound<'_, PyAny>,
+    ) -> PyResult<PyModel> {
+        let inner = py
+            .detach(|| pqp::Model::from_bytes(saved))
+            .map_err(|e| lib_err("saved model", e))?;
+        let v = float_array(vertices, "vertices")?;
+        let v = rows3(&v.as_array(), "vertices")?;
+        let f = faces(faces_obj, "faces", v.len())?;
+        if f.len() != inner.num_triangles() {
+            return Err(bad(
+                "faces",
+                "count differs from the saved model's triangles",
+            ));
+        }
+        Ok(PyModel {
+            inner,
+            vertices: v,
+            faces: f,
+        })
+    }
+
+    /// Unpickles a primitive model.
+    #[staticmethod]
+    fn _from_primitive(kind: &str, a: f64, b: f64, c: f64) -> PyResult<PyModel> {
+        match kind {
+            "sphere" => PyModel::sphere(a),
+            "capsule" => PyModel::capsule(a, b),
+            "box" => PyModel::box_(a, b, c),
+            _ => Err(bad("kind", format!("unknown primitive {kind:?}"))),
         }
     }
 }
@@ -269,43 +312,5 @@ fn check_size(v: f64, name: &str) -> PyResult<()> {
         Ok(())
     } else {
         Err(bad(name, format!("must be finite and >= 0, got {v}")))
-    }
-}
-
-/// Unpickles a mesh model: its saved bytes (checked, not rebuilt) and its vertices and faces.
-#[pyfunction]
-pub fn _restore_mesh(
-    py: Python<'_>,
-    saved: &[u8],
-    vertices: &Bound<'_, PyAny>,
-    faces_obj: &Bound<'_, PyAny>,
-) -> PyResult<PyModel> {
-    let inner = py
-        .detach(|| pqp::Model::from_bytes(saved))
-        .map_err(|e| lib_err("saved model", e))?;
-    let v = float_array(vertices, "vertices")?;
-    let v = rows3(&v.as_array(), "vertices")?;
-    let f = faces(faces_obj, "faces", v.len())?;
-    if f.len() != inner.num_triangles() {
-        return Err(bad(
-            "faces",
-            "count differs from the saved model's triangles",
-        ));
-    }
-    Ok(PyModel {
-        inner,
-        vertices: v,
-        faces: f,
-    })
-}
-
-/// Unpickles a primitive model.
-#[pyfunction]
-pub fn _restore_primitive(kind: &str, a: f64, b: f64, c: f64) -> PyResult<PyModel> {
-    match kind {
-        "sphere" => PyModel::sphere(a),
-        "capsule" => PyModel::capsule(a, b),
-        "box" => PyModel::box_(a, b, c),
-        _ => Err(bad("kind", format!("unknown primitive {kind:?}"))),
     }
 }
