@@ -4,8 +4,8 @@
 # Makes (or reuses) a virtual environment in BUILD_DIR/python-venv with PYTHON, installs the
 # package from python/ as `pip install ./python` does (maturin, release profile; cargo's target
 # directory in BUILD_DIR/python-cargo so rebuilds are incremental), pytest and the peers the tests
-# compare against (python-fcl, trimesh with rtree for its closest points), then runs pytest. The
-# exit status is pytest's.
+# compare against (python-fcl, trimesh with rtree and scipy for its proximity queries), then runs
+# pytest. The exit status is pytest's.
 set -euo pipefail
 
 python=${1:?usage: run_tests.sh PYTHON BUILD_DIR}
@@ -18,7 +18,7 @@ if [[ ! -x "$venv/bin/python" ]]; then
 fi
 pip=("$venv/bin/python" -m pip --disable-pip-version-check --quiet)
 export CARGO_TARGET_DIR="$build/python-cargo"
-"${pip[@]}" install numpy pytest python-fcl trimesh rtree
+"${pip[@]}" install numpy pytest python-fcl trimesh rtree scipy
 # Built and reinstalled every run, so that it tracks the sources (cargo rebuilds only what
 # changed); its one dependency, numpy, is installed above.
 "${pip[@]}" install --force-reinstall --no-deps "$here"
