@@ -122,6 +122,21 @@ pub fn faces(obj: &Bound<'_, PyAny>, name: &str, n_vertices: usize) -> PyResult<
     Ok(out)
 }
 
+/// Whether `obj` is an `(R, T)` pair: a tuple or list of two whose first is 3x3 (a list of two
+/// 4x4 matrices is a batch of poses, not a pair).
+fn is_pair(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if !(obj.is_instance_of::<PyTuple>() || obj.is_instance_of::<PyList>()) || obj.len()? != 2 {
+        return Ok(false);
+    }
+    let first = obj.get_item(0)?;
+    Ok(
+        match first.extract::<PyArrayLikeDyn<'_, f64, AllowTypeChange>>() {
+            Ok(r) => r.as_array().shape() == [3, 3],
+            Err(_) => false,
+        },
+    )
+}
+
 /// A pose from Python: `None` (identity), a 4x4 homogeneous matrix, or a pair `(R, T)` of a 3x3
 /// rotation and a 3-vector. The rotation must be one (orthonormal, determinant +1, to 1e-6), every
 /// entry finite and within 1e150, and a 4x4 matrix's last row `[0, 0, 0, 1]`.
@@ -131,9 +146,7 @@ pub fn pose(obj: Option<&Bound<'_, PyAny>>, name: &str) -> PyResult<Pose> {
         Some(o) if o.is_none() => return Ok(Pose::identity()),
         Some(o) => o,
     };
-    let pair =
-        (obj.is_instance_of::<PyTuple>() || obj.is_instance_of::<PyList>()) && obj.len()? == 2;
-    if pair {
+    if is_pair(obj)? {
         let r = float_array(&obj.get_item(0)?, name)?;
         let t = float_array(&obj.get_item(1)?, name)?;
         let (r, t) = (r.as_array(), t.as_array());
@@ -230,9 +243,7 @@ pub fn batch_poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<BatchPoses> {
     if obj.is_none() {
         return Ok(BatchPoses::One(Pose::identity()));
     }
-    let is_pair =
-        (obj.is_instance_of::<PyTuple>() || obj.is_instance_of::<PyList>()) && obj.len()? == 2;
-    if is_pair {
+    if is_pair(obj)? {
         return Ok(BatchPoses::One(pose(Some(obj), name)?));
     }
     let arr = float_array(obj, name)?;

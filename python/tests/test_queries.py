@@ -173,3 +173,16 @@ def test_refit_matches_rebuild(rng):
         p = random_pose(rng, 1.0)
         assert pqp.distance(m, None, other, p)[0] == pytest.approx(pqp.distance(rebuilt, None, other, p)[0], abs=1e-12)
         assert pair_set(pqp.collide(m, None, other, p)) == pair_set(pqp.collide(rebuilt, None, other, p))
+
+
+def test_batch_poses_as_lists_and_primitive_points(rng):
+    m = pqp.Model(*uv_sphere(0.5))
+    ps = [random_pose(rng, 2.0) for _ in range(2)]
+    # A list of two 4x4 matrices is a batch of two, not an (R, T) pair.
+    np.testing.assert_array_equal(pqp.distance_batch(m, None, m, ps), pqp.distance_batch(m, None, m, np.stack(ps)))
+    ball = pqp.Model.sphere(0.25)
+    for p in ps:
+        d, q1, q2 = pqp.distance(m, None, ball, p)
+        assert np.linalg.norm(q1 - q2) == pytest.approx(d, abs=1e-12)
+        # The ball's closest point is on its surface, in world coordinates.
+        assert np.linalg.norm(q2 - p[:3, 3]) == pytest.approx(0.25, abs=1e-12)
