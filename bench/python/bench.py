@@ -4,9 +4,10 @@ poses, checking that the answers agree.
     pip install ./python python-fcl trimesh rtree   # in a virtual environment
     python bench/python/bench.py [--reps 3] [--poses 10000] [--points 100000]
 
-Rows: building a model of 40k and of 1M triangles; collision and distance at N pose pairs (a
-Python loop of python-fcl calls, a Python loop of pqp calls, one pqp batch call); closest points
-of M points (trimesh.proximity.closest_point, pqp.closest_point). Each row is timed `reps` times,
+Rows: building a model of 40k and of 1M triangles; collision and distance at N pose pairs, for
+models of 40k and of 400 triangles (a Python loop of python-fcl calls, a Python loop of pqp
+calls, one pqp batch call); closest points
+of M points near the surface (trimesh.proximity.closest_point, pqp.closest_point). Each row is timed `reps` times,
 the implementations alternating within each repetition; the table gives the median and the
 minimum, and each row's ratio of medians against the peer.
 """
@@ -91,9 +92,72 @@ def timed(fn):
     return time.perf_counter() - t, out
 
 
-def row(table, name, runs, peer=None):
-    """Appends a row: implementation -> list of seconds."""
-    table.append((name, runs, peer))
+def pose_rows(results, rng, args, v, f, label):
+    """Collision and distance of a model against itself at N poses: a python-fcl loop, a pqp
+    loop, one pqp batch call."""
+    m = pqp.Model(v, f)
+    g = fcl_model(v, f)
+    n = args.poses
+    # Collision: the second model at 1.7-2.3 from the first (about half the poses collide).
+    p2 = poses(rng, n, 1.7, 2.3)
+    req = fcl.CollisionRequest()
+    o1 = fcl.CollisionObject(g, fcl.Transform())
+    o2 = fcl.CollisionObject(g, fcl.Transform())
+
+    def fcl_collide():
+        out = np.empty(n, bool)
+        for i in range(n):
+            o2.setTransform(fcl.Transform(p2[i, :3, :3], p2[i, :3, 3]))
+            out[i] = fcl.collide(o1, o2, req, fcl.CollisionResult()) > 0
+        return out
+
+    def pqp_collide_loop():
+        out = np.empty(n, bool)
+        for i in range(n):
+            out[i] = len(pqp.collide(m, None, m, p2[i], first=True)) > 0
+        return out
+
+    def pqp_collide_batch():
+        return pqp.collide_batch(m, None, m, p2)
+
+    runs = {k: [] for k in ("fcl", "loop", "batch")}
+    answers = {}
+    for _ in range(args.reps):
+        for k, fn in (("fcl", fcl_collide), ("loop", pqp_collide_loop), ("batch", pqp_collide_batch)):
+            t, answers[k] = timed(fn)
+            runs[k].append(t)
+    agree = int((answers["fcl"] == answers["loop"]).sum()), int((answers["fcl"] == answers["batch"]).sum())
+    print(f"collision {label}: {answers['fcl'].sum()} of {n} collide; pqp agrees on {agree}", file=sys.stderr)
+    results.append((f"collide, {n} poses ({label})", [("python-fcl loop", runs["fcl"]), ("pqp loop", runs["loop"]), ("pqp.collide_batch", runs["batch"])]))
+
+    # Distance: separated, the second model at 2.05-3.0 (the spheres' radii are about 1).
+    p3 = poses(rng, n, 2.05, 3.0)
+    dreq = fcl.DistanceRequest()
+
+    def fcl_distance():
+        out = np.empty(n)
+        for i in range(n):
+            o2.setTransform(fcl.Transform(p3[i, :3, :3], p3[i, :3, 3]))
+            out[i] = fcl.distance(o1, o2, dreq, fcl.DistanceResult())
+        return out
+
+    def pqp_distance_loop():
+        out = np.empty(n)
+        for i in range(n):
+            out[i] = pqp.distance(m, None, m, p3[i])[0]
+        return out
+
+    def pqp_distance_batch():
+        return pqp.distance_batch(m, None, m, p3)
+
+    runs = {k: [] for k in ("fcl", "loop", "batch")}
+    for _ in range(args.reps):
+        for k, fn in (("fcl", fcl_distance), ("loop", pqp_distance_loop), ("batch", pqp_distance_batch)):
+            t, answers[k] = timed(fn)
+            runs[k].append(t)
+    err = np.abs(answers["fcl"] - answers["batch"]).max(), np.abs(answers["loop"] - answers["batch"]).max()
+    print(f"distance {label}: max |fcl - pqp| {err[0]:.2e}, |loop - batch| {err[1]:.2e}", file=sys.stderr)
+    results.append((f"distance, {n} poses ({label})", [("python-fcl loop", runs["fcl"]), ("pqp loop", runs["loop"]), ("pqp.distance_batch", runs["batch"])]))
 
 
 def main():
@@ -121,73 +185,13 @@ def main():
         results.append((name, [("python-fcl BVHModel", t_fcl), ("pqp.Model threads=1", t_pq1), ("pqp.Model (all cores)", t_pq)]))
 
     m40 = pqp.Model(v40, f40)
-    g40 = fcl_model(v40, f40)
-    n = args.poses
+    for v, f, label in ((v40, f40, "40k vs 40k"), (*sphere_mesh(11, 20), "400 vs 400")):
+        pose_rows(results, rng, args, v, f, label)
 
-    # Collision: the second model at 1.7-2.3 from the first (about half the poses collide).
-    p2 = poses(rng, n, 1.7, 2.3)
-    req = fcl.CollisionRequest()
-    o1 = fcl.CollisionObject(g40, fcl.Transform())
-    o2 = fcl.CollisionObject(g40, fcl.Transform())
-
-    def fcl_collide():
-        out = np.empty(n, bool)
-        for i in range(n):
-            o2.setTransform(fcl.Transform(p2[i, :3, :3], p2[i, :3, 3]))
-            out[i] = fcl.collide(o1, o2, req, fcl.CollisionResult()) > 0
-        return out
-
-    def pqp_collide_loop():
-        out = np.empty(n, bool)
-        for i in range(n):
-            out[i] = len(pqp.collide(m40, None, m40, p2[i], first=True)) > 0
-        return out
-
-    def pqp_collide_batch():
-        return pqp.collide_batch(m40, None, m40, p2)
-
-    runs = {k: [] for k in ("fcl", "loop", "batch")}
-    answers = {}
-    for _ in range(args.reps):
-        for k, fn in (("fcl", fcl_collide), ("loop", pqp_collide_loop), ("batch", pqp_collide_batch)):
-            t, answers[k] = timed(fn)
-            runs[k].append(t)
-    agree = (answers["fcl"] == answers["loop"]).sum(), (answers["fcl"] == answers["batch"]).sum()
-    print(f"collision: {answers['fcl'].sum()} of {n} collide; pqp agrees on {agree}", file=sys.stderr)
-    results.append((f"collide, {n} poses (40k vs 40k)", [("python-fcl loop", runs["fcl"]), ("pqp loop", runs["loop"]), ("pqp.collide_batch", runs["batch"])]))
-
-    # Distance: separated, the second model at 2.05-3.0 (the spheres' radii are about 1).
-    p3 = poses(rng, n, 2.05, 3.0)
-    dreq = fcl.DistanceRequest()
-
-    def fcl_distance():
-        out = np.empty(n)
-        for i in range(n):
-            o2.setTransform(fcl.Transform(p3[i, :3, :3], p3[i, :3, 3]))
-            out[i] = fcl.distance(o1, o2, dreq, fcl.DistanceResult())
-        return out
-
-    def pqp_distance_loop():
-        out = np.empty(n)
-        for i in range(n):
-            out[i] = pqp.distance(m40, None, m40, p3[i])[0]
-        return out
-
-    def pqp_distance_batch():
-        return pqp.distance_batch(m40, None, m40, p3)
-
-    runs = {k: [] for k in ("fcl", "loop", "batch")}
-    for _ in range(args.reps):
-        for k, fn in (("fcl", fcl_distance), ("loop", pqp_distance_loop), ("batch", pqp_distance_batch)):
-            t, answers[k] = timed(fn)
-            runs[k].append(t)
-    err = np.abs(answers["fcl"] - answers["batch"]).max(), np.abs(answers["loop"] - answers["batch"]).max()
-    print(f"distance: max |fcl - pqp| {err[0]:.2e}, |loop - batch| {err[1]:.2e}", file=sys.stderr)
-    results.append((f"distance, {n} poses (40k vs 40k)", [("python-fcl loop", runs["fcl"]), ("pqp loop", runs["loop"]), ("pqp.distance_batch", runs["batch"])]))
-
-    # Closest points.
+    # Closest points: in a shell around the surface (from 0.9 to 1.1 times the radius).
     q = args.points
-    pts = rng.uniform(-1.5, 1.5, (q, 3))
+    pts = rng.normal(size=(q, 3))
+    pts *= rng.uniform(0.9, 1.1, (q, 1)) / np.linalg.norm(pts, axis=1, keepdims=True)
     tm = trimesh.Trimesh(v40, f40, process=False)
     runs = {k: [] for k in ("trimesh", "pqp1", "pqp")}
     for _ in range(args.reps):
