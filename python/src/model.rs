@@ -109,8 +109,9 @@ impl PyModel {
         py: Python<'_>,
         vertices: &Bound<'_, PyAny>,
         faces: Option<&Bound<'_, PyAny>>,
-        threads: usize,
+        threads: i64,
     ) -> PyResult<PyModel> {
+        let threads = crate::queries::threads_arg(threads)?;
         match faces {
             Some(f) => PyModel::from_arrays(py, vertices, f, threads),
             None => match PyModel::from_mesh_like(py, vertices)? {

@@ -92,6 +92,11 @@ fn mesh_only(m: &PyModel, name: &str) -> PyResult<()> {
     }
 }
 
+/// A `threads` argument: 0 (all cores) or a positive count.
+pub fn threads_arg(threads: i64) -> PyResult<usize> {
+    usize::try_from(threads).map_err(|_| bad("threads", format!("must be >= 0, got {threads}")))
+}
+
 /// Runs `f(i)` for `i` in `0..n` on up to `threads` threads (0: all cores), in order.
 fn par_map<T: Send + Default + Clone>(
     n: usize,
@@ -300,7 +305,7 @@ pub fn closest_point<'py>(
     pose: Option<&Bound<'py, PyAny>>,
     points: &Bound<'py, PyAny>,
     max_distance: f64,
-    threads: usize,
+    threads: i64,
 ) -> PyResult<(
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray2<f64>>,
@@ -308,6 +313,7 @@ pub fn closest_point<'py>(
 )> {
     let m = model_arg(model, "model")?;
     mesh_only(&m, "model")?;
+    let threads = threads_arg(threads)?;
     let p = crate::convert::pose(pose, "pose")?;
     let pts = crate::convert::points(points, "points")?;
     check_nonneg(max_distance, "max_distance")?;
@@ -336,10 +342,11 @@ pub fn signed_distance<'py>(
     model: &Bound<'py, PyAny>,
     pose: Option<&Bound<'py, PyAny>>,
     points: &Bound<'py, PyAny>,
-    threads: usize,
+    threads: i64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let m = model_arg(model, "model")?;
     mesh_only(&m, "model")?;
+    let threads = threads_arg(threads)?;
     let p = crate::convert::pose(pose, "pose")?;
     let pts = crate::convert::points(points, "points")?;
     let inner = &m.inner;
@@ -366,10 +373,11 @@ pub fn ray_cast<'py>(
     origins: &Bound<'py, PyAny>,
     directions: &Bound<'py, PyAny>,
     max_t: f64,
-    threads: usize,
+    threads: i64,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<i64>>)> {
     let m = model_arg(model, "model")?;
     mesh_only(&m, "model")?;
+    let threads = threads_arg(threads)?;
     let p = crate::convert::pose(pose, "pose")?;
     let o = crate::convert::points(origins, "origins")?;
     let d = crate::convert::float_array(directions, "directions")?;
@@ -430,9 +438,10 @@ pub fn collide_batch<'py>(
     poses1: &Bound<'py, PyAny>,
     m2: &Bound<'py, PyAny>,
     poses2: &Bound<'py, PyAny>,
-    threads: usize,
+    threads: i64,
 ) -> PyResult<Bound<'py, PyArray1<bool>>> {
     let (a, b, pairs) = batch_args(m1, poses1, m2, poses2)?;
+    let threads = threads_arg(threads)?;
     let (ma, mb) = (&a.inner, &b.inner);
     let r = py
         .detach(|| pqp::collide_batch(ma, mb, &pairs, threads))
@@ -452,11 +461,12 @@ pub fn distance_batch<'py>(
     poses1: &Bound<'py, PyAny>,
     m2: &Bound<'py, PyAny>,
     poses2: &Bound<'py, PyAny>,
-    threads: usize,
+    threads: i64,
     rel_err: f64,
     abs_err: f64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let (a, b, pairs) = batch_args(m1, poses1, m2, poses2)?;
+    let threads = threads_arg(threads)?;
     check_nonneg(rel_err, "rel_err")?;
     check_nonneg(abs_err, "abs_err")?;
     let opts = DistanceOptions::approximate(rel_err, abs_err);

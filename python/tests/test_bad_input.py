@@ -146,3 +146,12 @@ def test_bad_batches():
         pqp.distance_batch(M, np.zeros((3, 3, 3)), M, poses)
     with pytest.raises(ValueError, match="m2"):
         pqp.collide_batch(M, poses, None, poses)
+
+
+def test_negative_threads():
+    with pytest.raises(ValueError, match="threads"):
+        pqp.closest_point(M, None, P, threads=-1)
+    with pytest.raises(ValueError, match="threads"):
+        pqp.collide_batch(M, None, M, None, threads=-2)
+    with pytest.raises(ValueError, match="threads"):
+        pqp.Model(V, F, threads=-1)
