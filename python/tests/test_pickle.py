@@ -83,3 +83,41 @@ def test_threads_share_a_model(rng):
         t.join()
     for o in out:
         np.testing.assert_array_equal(o, want)
+
+
+def test_queries_release_the_gil(rng):
+    """Another Python thread runs while a query is under way (it could not if the GIL were held)."""
+    m = pqp.Model(*uv_sphere(1.0, 40, 80))
+    pts = rng.uniform(-2, 2, (20000, 3))
+    m2 = pqp.Model(*uv_sphere(1.0, 30, 60))
+    poses = np.stack([random_pose(rng, 2.5) for _ in range(100)])
+    big = uv_sphere(1.0, 100, 200)
+    calls = [
+        lambda: pqp.closest_point(m, None, pts, threads=1),
+        lambda: pqp.signed_distance(m, None, pts[:2000], threads=1),
+        lambda: pqp.distance_batch(m, None, m2, poses, threads=1),
+        lambda: pqp.Model(*big, threads=1),
+    ]
+    for call in calls:
+        window = []
+        ticks = []
+        done = threading.Event()
+
+        def run():
+            import time
+
+            t0 = time.perf_counter()
+            call()
+            window.extend([t0, time.perf_counter()])
+            done.set()
+
+        import time
+
+        t = threading.Thread(target=run)
+        t.start()
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0)
+        t.join()
+        inside = sum(window[0] < x < window[1] for x in ticks)
+        assert inside >= 10, (inside, window[1] - window[0])
